@@ -1,0 +1,53 @@
+// sfit convert: re-export a saved surface.
+#include <memory>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "outputs.h"
+#include "sfit/error.h"
+#include "sfit/io/atomic_file.h"
+#include "sfit/io/surface_json.h"
+
+namespace sfit::cli {
+namespace {
+
+struct ConvertArgs {
+  std::string input;
+  std::vector<std::string> outputs;
+  bool mesh = false;
+  int mesh_density = 0;
+  bool quiet = false;
+};
+
+int run_convert(const ConvertArgs& a) {
+  verbose = !a.quiet;
+  if (a.outputs.empty())
+    throw Error(ErrorCode::kUsage, "nothing to write: give -o OUT.ext", Place{.option = "-o"});
+  for (const auto& out : a.outputs) {
+    check_output_extension(out);
+    io::check_writable(out);
+  }
+  const Surface s = io::read_surface_json(a.input);
+  OutputContext ctx{s, nullptr, nullptr, a.input, a.mesh, a.mesh_density, false};
+  for (const auto& out : a.outputs) {
+    write_output(out, ctx);
+    say("wrote " + out);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_convert_command(CLI::App& app, Runner& run) {
+  auto args = std::make_shared<ConvertArgs>();
+  CLI::App* c = app.add_subcommand("convert", "re-export a saved surface (.json) to other formats");
+  c->add_option("SURFACE", args->input, "surface file written by 'sfit fit' (.json)")->required();
+  c->add_option("-o,--output", args->outputs, "output file(s); the extension picks the format");
+  c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh");
+  c->add_option("--mesh-density", args->mesh_density, "tessellation samples per direction");
+  c->add_flag("-q,--quiet", args->quiet, "print errors only");
+  c->footer("Example:\n  sfit convert hull.json -o hull.step -o hull.stl");
+  c->callback([args, &run] { run = [args] { return run_convert(*args); }; });
+}
+
+}  // namespace sfit::cli

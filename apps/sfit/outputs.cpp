@@ -1,0 +1,72 @@
+#include "outputs.h"
+
+#include <algorithm>
+#include <map>
+
+#include "sfit/error.h"
+#include "sfit/io/surface_json.h"
+#ifdef SFIT_HAVE_EXCHANGE
+#include "sfit/exchange/writers.h"
+#endif
+
+namespace sfit::cli {
+namespace {
+
+using Writer = std::function<void(const std::string&, const OutputContext&)>;
+
+const std::map<std::string, Writer>& writers() {
+  static const std::map<std::string, Writer> w = [] {
+    std::map<std::string, Writer> m;
+    m["json"] = [](const std::string& p, const OutputContext& c) {
+      io::write_surface_json(p, c.surface, c.fit ? &c.fit->report : nullptr);
+    };
+#ifdef SFIT_HAVE_EXCHANGE
+    for (const auto& ext : exchange::writer_extensions()) {
+      m[ext] = [](const std::string& p, const OutputContext& c) {
+        exchange::WriteOptions o;
+        o.mesh = c.mesh;
+        o.mesh_density = c.mesh_density;
+        o.fields = c.fields;
+        o.tolerance = c.fit ? c.fit->report.tolerance.minCoeff() : 0.0;
+        exchange::write_surface(p, c.surface, o, c.fit, c.rows);
+      };
+    }
+#endif
+    return m;
+  }();
+  return w;
+}
+
+}  // namespace
+
+std::string extension_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot + 1);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+std::vector<std::string> output_extensions() {
+  std::vector<std::string> v;
+  for (const auto& [k, w] : writers()) v.push_back(k);
+  return v;
+}
+
+void check_output_extension(const std::string& path) {
+  const std::string e = extension_of(path);
+  if (writers().count(e)) return;
+  std::string known;
+  for (const auto& k : output_extensions()) known += (known.empty() ? "." : ", .") + k;
+  throw Error(ErrorCode::kUsage,
+              "cannot write '" + path + "': unknown output extension '" + e + "' (known: " + known + ")",
+              Place{.option = "-o"});
+}
+
+void write_output(const std::string& path, const OutputContext& context) {
+  check_output_extension(path);
+  writers().at(extension_of(path))(path, context);
+}
+
+}  // namespace sfit::cli

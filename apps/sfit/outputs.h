@@ -1,0 +1,35 @@
+// Output formats chosen by the -o extension. The JSON contract is built in; optional parts
+// (exchange, render) register theirs in outputs.cpp under their SFIT_HAVE_* switch.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sfit/rows.h"
+#include "sfit/surface.h"
+#include "sfit/surface_fit.h"
+
+namespace sfit::cli {
+
+/// What a writer may use: the surface always; the fit and the data when the command fitted.
+struct OutputContext {
+  const Surface& surface;
+  const FitResult* fit = nullptr;
+  const Rows* rows = nullptr;
+  std::string input_name;
+  bool mesh = false;        ///< --mesh: OBJ as a tessellated mesh instead of free-form
+  int mesh_density = 0;     ///< --mesh-density: samples per direction (0: automatic)
+  bool fields = false;      ///< --fields: deviation/curvature point data (VTK)
+};
+
+/// Lower-case extension of `path` without the dot ("json", "step", ...).
+std::string extension_of(const std::string& path);
+/// Extensions that -o accepts in this build.
+std::vector<std::string> output_extensions();
+/// Throws Error(kUsage, option "-o") if no writer handles the extension of `path`.
+void check_output_extension(const std::string& path);
+/// Writes `path` in the format of its extension (atomically).
+void write_output(const std::string& path, const OutputContext& context);
+
+}  // namespace sfit::cli

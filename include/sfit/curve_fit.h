@@ -1,0 +1,47 @@
+// Curve stage: one row of points to the B-spline curve with the fewest control points that
+// keeps every component of every point within a bound (METHOD.md section 3).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "sfit/curve.h"
+#include "sfit/rows.h"
+
+namespace sfit {
+
+/// How the smallest control-point count is searched (METHOD.md section 7.1).
+enum class CountSearch {
+  kLinear,  ///< the paper's SFIT01: count = degree+1, degree+2, ... until the fit holds
+  kFast,    ///< default: galloping then bisection on the count, then a downward check of the
+            ///< counts just below (README "Count search" says where it differs from kLinear)
+};
+
+/// A least-squares curve and what it achieved.
+struct CurveFit {
+  Curve curve;
+  std::vector<double> parameters;  ///< t of each data point (paper_parameters())
+  Point max_deviation = Point::Zero();  ///< max_j |C(t_j) - D_j| per axis
+  int solves = 0;                  ///< least-squares solves the search needed
+};
+
+/// Least-squares fit of `points` by a uniform curve of `degree` with exactly `count` control
+/// points at the paper's parameters (METHOD.md 3). Requires degree+1 <= count <= points.size()
+/// (a periodic fit needs count >= degree + 1 too). Throws Error(kInternal) if the system is
+/// singular, which the paper's parameters rule out.
+CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count);
+
+struct CurveFitOptions {
+  int degree = 3;
+  bool periodic = false;             ///< closed contour (first point not repeated at the end)
+  Point bound = Point::Zero();       ///< per-axis bound on |C(t_j) - D_j| (T/2 in a surface fit)
+  CountSearch search = CountSearch::kFast;
+};
+
+/// The curve with the smallest count in [degree+1, N] whose fit keeps every point within
+/// `bound` per axis; count N interpolates and is accepted as the last resort.
+/// A row of 1 < N < degree+1 points gives its degree N-1 interpolant (the paper's order-N
+/// curve); a row of 1 point gives a constant curve of degree 0 (a pole).
+CurveFit fit_curve(std::span<const Point> points, const CurveFitOptions& options);
+
+}  // namespace sfit

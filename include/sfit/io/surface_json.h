@@ -1,0 +1,36 @@
+// The surface and report JSON of ../shared/SURFACE_JSON.md.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "sfit/surface.h"
+#include "sfit/surface_fit.h"
+
+namespace sfit::io {
+
+/// The surface in the contract's form: full knot vectors, full control arrays (a periodic
+/// direction stores its wrap copies), `periodic` flags. Doubles round-trip exactly.
+nlohmann::json surface_to_json(const Surface& surface);
+
+/// The report keys of the contract plus sfit's extras (degree, closed, column_counts,
+/// raised/repaired counts, solves).
+nlohmann::json report_to_json(const FitReport& report);
+
+/// Reads a surface in the contract's form; `name` is used in messages.
+/// Throws Error(kInputSyntax) for malformed JSON and Error(kInputData) for a surface that
+/// breaks the contract (knot vector lengths, non-uniform knots sfit cannot represent, a
+/// periodic direction whose wrap copies differ, non-finite numbers).
+Surface surface_from_json(const nlohmann::json& j, const std::string& name);
+
+/// Reads a surface file written by surface_to_json (or any tool keeping the contract with
+/// sfit's uniform knots).
+Surface read_surface_json(const std::string& path);
+
+/// Writes {surface..., "report": {...}} atomically (report omitted when null).
+void write_surface_json(const std::string& path, const Surface& surface,
+                        const FitReport* report = nullptr);
+/// Writes the report alone, atomically.
+void write_report_json(const std::string& path, const FitReport& report);
+
+}  // namespace sfit::io

@@ -1,0 +1,83 @@
+// Rows of points to one B-spline surface within a per-axis tolerance (METHOD.md sections 3-5),
+// with every data point checked on the finished surface.
+#pragma once
+
+#include <functional>
+#include <string_view>
+#include <vector>
+
+#include "sfit/curve_fit.h"
+#include "sfit/rows.h"
+#include "sfit/surface.h"
+
+namespace sfit {
+
+/// Deviations below this fraction of the data's size count as round-off (used at T = 0).
+inline constexpr double kRoundoffRelative = 1e-10;
+
+struct FitOptions {
+  int degree_u = 3;               ///< degree along the rows, 1 ... 20
+  int degree_v = 3;               ///< degree across the rows, 1 ... 20
+  Point tolerance = Point::Zero();  ///< T = (Tx, Ty, Tz) >= 0, absolute; 0 interpolates
+  bool closed_u = false;          ///< rows are closed contours (first point not repeated)
+  bool closed_v = false;          ///< the sequence of rows is closed
+  CountSearch search = CountSearch::kFast;
+  int threads = 0;                ///< 0: all cores; results are identical for any count
+  /// Called between stages: (stage name, items done, items in the stage).
+  std::function<void(std::string_view, std::size_t, std::size_t)> progress;
+};
+
+/// What a fit achieved (SURFACE_JSON.md "report").
+struct FitReport {
+  std::size_t points = 0;
+  std::size_t rows = 0;
+  Point tolerance = Point::Zero();
+  Point max_deviation = Point::Zero();  ///< per axis, over every data point, on the surface
+  long worst_row = -1;                  ///< the point using most of its tolerance
+  long worst_index = -1;
+  Point worst_deviation = Point::Zero();  ///< surface minus data there, signed
+  bool within_tolerance = false;
+  int count_u = 0;                      ///< nu (distinct control points along u)
+  int count_v = 0;                      ///< nv
+  int degree_u = 0, degree_v = 0;
+  bool closed_u = false, closed_v = false;
+  std::vector<int> row_counts;          ///< minimal count of each row (curve stage)
+  std::vector<int> column_counts;       ///< minimal count of each column (transverse stage)
+  int raised_u = 0;        ///< times nu was raised above max(row_counts) by the guarantee
+  int raised_v = 0;        ///< times nv was raised above max(column_counts)
+  int repaired_rows = 0;   ///< rows whose paper re-representation needed the repair
+  int repaired_columns = 0;
+  int tightenings = 0;     ///< times both stage budgets were halved after a failed final check
+  long solves = 0;         ///< least-squares solves made by the count searches
+  double roundoff = 0;     ///< absolute round-off allowance used at T = 0
+  double seconds = 0;
+};
+
+struct FitResult {
+  Surface surface;
+  FitReport report;
+  std::vector<double> u;  ///< parameter u of every data point, in the order of Rows::points()
+  std::vector<double> v;  ///< parameter v of every row
+};
+
+/// Checks rows and options; throws Error (kInputData for the data, kUsage for the options)
+/// naming the row/point or option and the offending values.
+void validate(const Rows& rows, const FitOptions& options);
+
+/// T = fraction x the bounding-box diagonal on every axis (the CLI default is 1e-3).
+Point relative_tolerance(const Rows& rows, double fraction);
+
+/// The whole method: curve stage on each row (minimal count within T/2), re-representation on
+/// the common count nu, transverse stage on the nu columns of control points (minimal count
+/// within T/2), re-representation on nv, assembly, and the check of every data point.
+///
+/// The guarantee: each re-representation is checked point by point and repaired
+/// (rerepresent()); where that cannot hold a row (column), nu (nv) is raised. Columns are
+/// re-represented at one common v per row, so by the partition of unity every point is within
+/// T/2 + T/2 = T. The final check confirms it; if round-off defeats it, both stage budgets are
+/// halved and the fit redone (at most 3 times). report.within_tolerance is false only if all
+/// of that failed. Fitting runs on coordinates centred on the bounding box, so an offset of
+/// the data costs no digits. Throws Error as validate() does.
+FitResult fit_surface(const Rows& rows, const FitOptions& options);
+
+}  // namespace sfit

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Installs the dependencies, builds sfit, and fits the bundled hull example.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+scripts/install-deps.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build
+mkdir -p out
+build/apps/sfit/sfit fit examples/ship_px121_stations.rows -o out/hull.json --report out/hull-report.json
+echo "surface: out/hull.json  report: out/hull-report.json"

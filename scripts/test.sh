@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Installs the dependencies, builds sfit with its tests, and runs the whole test suite.
+# Each stage in scripts/test.d/ (run in name order) adds a further check: sanitizers, fuzzing.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+scripts/install-deps.sh
+jobs=$(nproc)
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$jobs"
+ctest --test-dir build --output-on-failure -j "$jobs"
+for stage in scripts/test.d/*.sh; do
+  [ -e "$stage" ] || continue
+  echo "== $stage"
+  bash "$stage"
+done

@@ -1,0 +1,130 @@
+#include "banded_lsq.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sfit::detail {
+
+namespace {
+// Applies the rotation that zeroes b against a: returns (c, s) with a := r.
+inline void givens(double& a, double b, double& c, double& s) {
+  const double r = std::hypot(a, b);
+  if (r == 0.0) {
+    c = 1.0;
+    s = 0.0;
+    return;
+  }
+  c = a / r;
+  s = b / r;
+  a = r;
+}
+inline void rotate(double& x, double& y, double c, double s) {
+  const double nx = c * x + s * y;
+  y = -s * x + c * y;
+  x = nx;
+}
+}  // namespace
+
+BandedLeastSquares::BandedLeastSquares(int n, int width, bool periodic)
+    : n_(n),
+      w_(std::min(width, n)),
+      tail_(periodic ? std::min(width, n) - 1 : 0),
+      nb_(n - (periodic ? std::min(width, n) - 1 : 0)) {
+  band_.assign(static_cast<std::size_t>(nb_) * w_, 0.0);
+  side_.assign(static_cast<std::size_t>(nb_) * tail_, 0.0);
+  tri_.assign(static_cast<std::size_t>(tail_) * tail_, 0.0);
+  z_.assign(static_cast<std::size_t>(n_), Point::Zero());
+  h_.assign(static_cast<std::size_t>(w_), 0.0);
+  f_.assign(static_cast<std::size_t>(tail_), 0.0);
+}
+
+void BandedLeastSquares::reset() {
+  std::fill(band_.begin(), band_.end(), 0.0);
+  std::fill(side_.begin(), side_.end(), 0.0);
+  std::fill(tri_.begin(), tri_.end(), 0.0);
+  std::fill(z_.begin(), z_.end(), Point::Zero());
+}
+
+void BandedLeastSquares::add(int first, const double* coef, const Point& rhs, double weight) {
+  // Scatter the equation into band part h (relative to band column c0) and tail part f.
+  std::fill(h_.begin(), h_.end(), 0.0);
+  std::fill(f_.begin(), f_.end(), 0.0);
+  int c0 = -1;
+  for (int i = 0; i < w_; ++i) {
+    const int col = tail_ > 0 ? (first + i) % n_ : first + i;
+    const double a = weight * coef[i];
+    if (col < tail_) {
+      f_[col] += a;
+    } else {
+      const int b = col - tail_;
+      if (c0 < 0) c0 = b;
+      h_[b - c0] += a;
+    }
+  }
+  Point y = weight * rhs;
+  // Band part: rotate against rows c0, c0+1, ... of R.
+  if (c0 >= 0) {
+    for (int c = c0; c < nb_; ++c) {
+      const double hc = h_[0];
+      if (hc != 0.0) {
+        double* R = &band_[static_cast<std::size_t>(c) * w_];
+        double cs, sn;
+        givens(R[0], hc, cs, sn);
+        for (int d = 1; d < w_; ++d) rotate(R[d], h_[d], cs, sn);
+        double* S = tail_ ? &side_[static_cast<std::size_t>(c) * tail_] : nullptr;
+        for (int t = 0; t < tail_; ++t) rotate(S[t], f_[t], cs, sn);
+        for (int a = 0; a < 3; ++a) rotate(z_[c][a], y[a], cs, sn);
+      }
+      // Shift the band window one column to the right.
+      bool any = false;
+      for (int d = 0; d + 1 < w_; ++d) {
+        h_[d] = h_[d + 1];
+        any = any || h_[d] != 0.0;
+      }
+      h_[w_ - 1] = 0.0;
+      if (!any) break;
+    }
+  }
+  // Tail part: a small dense upper triangle.
+  for (int a = 0; a < tail_; ++a) {
+    const double fa = f_[a];
+    if (fa == 0.0) continue;
+    double* T = &tri_[static_cast<std::size_t>(a) * tail_];
+    double cs, sn;
+    givens(T[a], fa, cs, sn);
+    f_[a] = 0.0;
+    for (int b = a + 1; b < tail_; ++b) rotate(T[b], f_[b], cs, sn);
+    for (int k = 0; k < 3; ++k) rotate(z_[nb_ + a][k], y[k], cs, sn);
+  }
+}
+
+bool BandedLeastSquares::solve(std::vector<Point>& x) const {
+  double maxpiv = 0.0;
+  for (int c = 0; c < nb_; ++c) maxpiv = std::max(maxpiv, std::abs(band_[c * w_]));
+  for (int a = 0; a < tail_; ++a) maxpiv = std::max(maxpiv, std::abs(tri_[a * tail_ + a]));
+  const double tiny = maxpiv * 1e-14;
+  if (!(maxpiv > 0.0)) return false;
+  std::vector<Point> sol(static_cast<std::size_t>(n_), Point::Zero());
+  // Tail unknowns (original columns 0 .. tail-1) sit at positions nb_ .. n_-1.
+  for (int a = tail_ - 1; a >= 0; --a) {
+    const double piv = tri_[a * tail_ + a];
+    if (!(std::abs(piv) > tiny)) return false;
+    Point s = z_[nb_ + a];
+    for (int b = a + 1; b < tail_; ++b) s -= tri_[a * tail_ + b] * sol[nb_ + b];
+    sol[nb_ + a] = s / piv;
+  }
+  for (int c = nb_ - 1; c >= 0; --c) {
+    const double* R = &band_[static_cast<std::size_t>(c) * w_];
+    if (!(std::abs(R[0]) > tiny)) return false;
+    Point s = z_[c];
+    for (int d = 1; d < w_ && c + d < nb_; ++d) s -= R[d] * sol[c + d];
+    for (int t = 0; t < tail_; ++t) s -= side_[c * tail_ + t] * sol[nb_ + t];
+    sol[c] = s / R[0];
+  }
+  // Back to original column order.
+  x.resize(static_cast<std::size_t>(n_));
+  for (int col = 0; col < n_; ++col) x[col] = col < tail_ ? sol[nb_ + col] : sol[col - tail_];
+  return true;
+}
+
+}  // namespace sfit::detail

@@ -1,0 +1,72 @@
+#include "sfit/parametrization.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sfit/knots.h"
+
+namespace sfit {
+namespace {
+double periodic_offset(int degree) { return degree % 2 == 0 ? 0.5 : 0.0; }
+double wrap(double t, double period) {
+  double r = std::fmod(t, period);
+  if (r < 0) r += period;
+  if (r >= period) r = 0;
+  return r;
+}
+}  // namespace
+
+std::vector<double> paper_parameters(int degree, int count, bool periodic, int n_points) {
+  std::vector<double> t(static_cast<std::size_t>(n_points));
+  if (periodic) {
+    const double o = periodic_offset(degree);
+    for (int j = 0; j < n_points; ++j)
+      t[j] = wrap(o + static_cast<double>(j) * count / n_points, count);
+    return t;
+  }
+  if (n_points == 1) {
+    t[0] = 0.0;
+    return t;
+  }
+  const double a = static_cast<double>(count - 1) / (n_points - 1);
+  for (int j = 0; j < n_points; ++j) t[j] = greville_at(degree, count, false, a * j);
+  t[n_points - 1] = domain_end(degree, count, false);  // exact end despite round-off
+  return t;
+}
+
+ReparameterMap::ReparameterMap(int degree_from, int count_from, int degree_to, int count_to,
+                               bool periodic)
+    : periodic_(periodic) {
+  tau_.resize(static_cast<std::size_t>(count_to));
+  g_.resize(static_cast<std::size_t>(count_to));
+  if (periodic) {
+    scale_ = static_cast<double>(count_to) / count_from;
+    offset_from_ = periodic_offset(degree_from);
+    offset_to_ = periodic_offset(degree_to);
+    period_to_ = count_to;
+    for (int l = 0; l < count_to; ++l) {
+      tau_[l] = wrap(offset_from_ + l / scale_, count_from);
+      g_[l] = wrap(offset_to_ + l, count_to);
+    }
+    return;
+  }
+  const double a = count_to > 1 ? static_cast<double>(count_from - 1) / (count_to - 1) : 0.0;
+  for (int l = 0; l < count_to; ++l) {
+    tau_[l] = greville_at(degree_from, count_from, false, a * l);
+    g_[l] = greville(degree_to, count_to, false, l);
+  }
+}
+
+double ReparameterMap::operator()(double t) const {
+  if (periodic_) return wrap(offset_to_ + (t - offset_from_) * scale_, period_to_);
+  const std::size_t n = tau_.size();
+  if (n == 1) return g_[0];
+  if (t <= tau_.front()) return g_.front();
+  if (t >= tau_.back()) return g_.back();
+  const std::size_t l = static_cast<std::size_t>(std::upper_bound(tau_.begin(), tau_.end(), t) - tau_.begin()) - 1;
+  const double d = tau_[l + 1] - tau_[l];
+  const double f = d > 0 ? (t - tau_[l]) / d : 0.0;
+  return g_[l] + f * (g_[l + 1] - g_[l]);
+}
+
+}  // namespace sfit

@@ -1,0 +1,198 @@
+#include "sfit/io/rows_reader.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <sys/stat.h>
+
+#include "sfit/error.h"
+
+namespace sfit::io {
+namespace {
+
+// Incremental parser: feed() whole lines; finish() closes the last row.
+class Parser {
+ public:
+  explicit Parser(const std::string& name) { out_.name = name; }
+
+  void line(std::string_view s) {
+    ++line_no_;
+    if (line_no_ == 1 && s.size() >= 3 && static_cast<unsigned char>(s[0]) == 0xEF &&
+        static_cast<unsigned char>(s[1]) == 0xBB && static_cast<unsigned char>(s[2]) == 0xBF) {
+      s.remove_prefix(3);
+      col_base_ = 3;
+    } else {
+      col_base_ = 0;
+    }
+    if (!s.empty() && s.back() == '\r') s.remove_suffix(1);
+    double v[3];
+    int n = 0;
+    std::size_t i = 0;
+    bool comment = false;
+    while (i < s.size()) {
+      const char c = s[i];
+      if (c == ' ' || c == '\t' || c == ',' || c == '\r' || c == '\f' || c == '\v') {
+        ++i;
+        continue;
+      }
+      if (c == '#') {
+        comment = true;
+        break;
+      }
+      std::size_t e = i;
+      while (e < s.size() && s[e] != ' ' && s[e] != '\t' && s[e] != ',' && s[e] != '#' &&
+             s[e] != '\r')
+        ++e;
+      const std::string_view tok = s.substr(i, e - i);
+      if (n == 3)
+        fail(ErrorCode::kInputSyntax, i, "more than 3 numbers on a line: '" + show(tok) + "'");
+      v[n++] = number(tok, i);
+      i = e;
+    }
+    if (n == 0) {
+      if (!comment) blank();  // a blank line separates rows; a comment line is transparent
+      return;
+    }
+    if (n < 3)
+      fail(ErrorCode::kInputSyntax, s.size(),
+           "expected 3 numbers (x y z), found " + std::to_string(n));
+    if (out_.rows.open_row_size() == 0) out_.first_line.push_back(line_no_);
+    out_.rows.push_point(Point(v[0], v[1], v[2]));
+  }
+
+  void too_long() {
+    ++line_no_;
+    col_base_ = 0;
+    fail(ErrorCode::kInputSyntax, 0,
+         "line longer than " + std::to_string(kMaxLineBytes) + " bytes");
+  }
+
+  RowsFile finish() {
+    blank();
+    if (out_.rows.total_points() == 0) {
+      Place p{.file = out_.name};
+      throw Error(ErrorCode::kInputData, "no points: the input holds no 'x y z' line", p);
+    }
+    return std::move(out_);
+  }
+
+ private:
+  void blank() {
+    if (out_.rows.open_row_size() > 0) out_.rows.end_row();
+  }
+
+  static std::string show(std::string_view tok) {
+    std::string s;
+    for (char c : tok.substr(0, 40)) {
+      const unsigned char u = static_cast<unsigned char>(c);
+      if (u < 0x20 || u >= 0x7f) {
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\x%02x", u);
+        s += buf;
+      } else {
+        s += c;
+      }
+    }
+    if (tok.size() > 40) s += "...";
+    return s;
+  }
+
+  double number(std::string_view tok, std::size_t col) {
+    const char* b = tok.data();
+    const char* e = b + tok.size();
+    if (b != e && *b == '+') ++b;
+    double x = 0;
+    const auto r = std::from_chars(b, e, x);
+    if (r.ec == std::errc::result_out_of_range)
+      fail(ErrorCode::kInputData, col, "'" + show(tok) + "' is out of the range of a double");
+    if (r.ec != std::errc() || r.ptr != e || b == e)
+      fail(ErrorCode::kInputSyntax, col, "'" + show(tok) + "' is not a number");
+    if (!std::isfinite(x))
+      fail(ErrorCode::kInputData, col, "'" + show(tok) + "' is not a finite number");
+    return x;
+  }
+
+  [[noreturn]] void fail(ErrorCode code, std::size_t col0, const std::string& msg) {
+    Place p{.file = out_.name,
+            .line = line_no_,
+            .column = static_cast<long>(col0 + col_base_) + 1,
+            .row = static_cast<long>(out_.rows.size()),
+            .point = static_cast<long>(out_.rows.open_row_size())};
+    throw Error(code, msg, p);
+  }
+
+  RowsFile out_;
+  long line_no_ = 0;
+  std::size_t col_base_ = 0;
+};
+
+struct FileCloser {
+  void operator()(std::FILE* f) const {
+    if (f && f != stdin) std::fclose(f);
+  }
+};
+
+}  // namespace
+
+RowsFile parse_rows(std::string_view text, const std::string& name) {
+  Parser p(name);
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t nl = text.find('\n', start);
+    if (nl == std::string_view::npos) nl = text.size();
+    if (nl - start > kMaxLineBytes) p.too_long();
+    p.line(text.substr(start, nl - start));
+    start = nl + 1;
+  }
+  return p.finish();
+}
+
+RowsFile read_rows(const std::string& path) {
+  const bool is_stdin = path == "-";
+  const std::string name = is_stdin ? "-" : path;
+  if (!is_stdin) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0)
+      throw Error(ErrorCode::kInputUnreadable,
+                  std::string("cannot open input: ") + std::strerror(errno), Place{.file = path});
+    if (S_ISDIR(st.st_mode))
+      throw Error(ErrorCode::kInputUnreadable, "cannot read input: it is a directory",
+                  Place{.file = path});
+  }
+  std::unique_ptr<std::FILE, FileCloser> f(is_stdin ? stdin : std::fopen(path.c_str(), "rb"));
+  if (!f)
+    throw Error(ErrorCode::kInputUnreadable,
+                std::string("cannot open input: ") + std::strerror(errno), Place{.file = name});
+  Parser p(name);
+  constexpr std::size_t kBlock = 1 << 22;
+  std::string buf;
+  buf.reserve(kBlock + 4096);
+  std::string chunk(kBlock, '\0');
+  while (true) {
+    const std::size_t got = std::fread(chunk.data(), 1, kBlock, f.get());
+    if (got == 0) {
+      if (std::ferror(f.get()))
+        throw Error(ErrorCode::kInputUnreadable,
+                    std::string("cannot read input: ") + std::strerror(errno), Place{.file = name});
+      break;
+    }
+    buf.append(chunk.data(), got);
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t nl = buf.find('\n', start);
+      if (nl == std::string::npos) break;
+      if (nl - start > kMaxLineBytes) p.too_long();
+      p.line(std::string_view(buf).substr(start, nl - start));
+      start = nl + 1;
+    }
+    buf.erase(0, start);
+    if (buf.size() > kMaxLineBytes) p.too_long();
+  }
+  if (!buf.empty()) p.line(buf);
+  return p.finish();
+}
+
+}  // namespace sfit::io

@@ -1,0 +1,151 @@
+#include "sfit/io/surface_json.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "sfit/error.h"
+#include "sfit/io/atomic_file.h"
+#include "sfit/knots.h"
+
+namespace sfit::io {
+
+using nlohmann::json;
+
+namespace {
+json point(const Point& p) { return json::array({p.x(), p.y(), p.z()}); }
+}  // namespace
+
+json surface_to_json(const Surface& s) {
+  json j;
+  j["type"] = "bspline_surface";
+  j["degree"] = {s.degree_u, s.degree_v};
+  j["periodic"] = {s.periodic_u, s.periodic_v};
+  j["knots_u"] = s.full_knots_u();
+  j["knots_v"] = s.full_knots_v();
+  json cps = json::array();
+  const int fu = s.full_count_u(), fv = s.full_count_v();
+  for (int i = 0; i < fu; ++i) {
+    json row = json::array();
+    for (int l = 0; l < fv; ++l) row.push_back(point(s.full_at(i, l)));
+    cps.push_back(std::move(row));
+  }
+  j["control_points"] = std::move(cps);
+  return j;
+}
+
+json report_to_json(const FitReport& r) {
+  json j;
+  j["points"] = r.points;
+  j["rows"] = r.rows;
+  j["tolerance"] = point(r.tolerance);
+  j["max_deviation"] = point(r.max_deviation);
+  j["worst"] = {{"row", r.worst_row}, {"index", r.worst_index},
+                {"deviation", point(r.worst_deviation)}};
+  j["within_tolerance"] = r.within_tolerance;
+  j["control_points"] = {r.count_u, r.count_v};
+  j["row_counts"] = r.row_counts;
+  j["seconds"] = r.seconds;
+  // sfit's extras.
+  j["degree"] = {r.degree_u, r.degree_v};
+  j["closed"] = {r.closed_u, r.closed_v};
+  j["column_counts"] = r.column_counts;
+  j["raised"] = {r.raised_u, r.raised_v};
+  j["repaired"] = {r.repaired_rows, r.repaired_columns};
+  j["tightenings"] = r.tightenings;
+  j["solves"] = r.solves;
+  j["roundoff"] = r.roundoff;
+  return j;
+}
+
+namespace {
+
+[[noreturn]] void bad(const std::string& name, const std::string& what) {
+  throw Error(ErrorCode::kInputData, "not an sfit surface: " + what, Place{.file = name});
+}
+
+int distinct_count(const json& j, const std::string& name, const char* key, int degree,
+                   bool periodic, std::size_t full) {
+  const auto& k = j.at(key);
+  if (!k.is_array() || k.size() != full + degree + 1)
+    bad(name, std::string(key) + " must have " + std::to_string(full + degree + 1) + " entries");
+  const int n = static_cast<int>(full) - (periodic ? degree : 0);
+  if (n < degree + 1) bad(name, std::string("too few control points along ") + key);
+  const auto expect = periodic ? periodic_uniform_knots(degree, n) : clamped_uniform_knots(degree, n);
+  // sfit writes uniform knots; accept any affine image of them (a shifted or scaled domain
+  // would need a reparametrisation sfit does not do, so refuse it clearly).
+  for (std::size_t i = 0; i < expect.size(); ++i) {
+    const double v = k[i].get<double>();
+    if (!std::isfinite(v) || std::abs(v - expect[i]) > 1e-9 * (1 + std::abs(expect[i])))
+      bad(name, std::string(key) + " are not sfit's uniform knots (entry " + std::to_string(i) + ")");
+  }
+  return n;
+}
+
+}  // namespace
+
+Surface surface_from_json(const json& j, const std::string& name) {
+  try {
+    if (!j.is_object() || j.value("type", "") != "bspline_surface")
+      bad(name, "\"type\" must be \"bspline_surface\"");
+    Surface s;
+    s.degree_u = j.at("degree").at(0).get<int>();
+    s.degree_v = j.at("degree").at(1).get<int>();
+    if (s.degree_u < 1 || s.degree_u > 20 || s.degree_v < 1 || s.degree_v > 20)
+      bad(name, "degrees must be 1 ... 20");
+    if (j.contains("periodic")) {
+      s.periodic_u = j.at("periodic").at(0).get<bool>();
+      s.periodic_v = j.at("periodic").at(1).get<bool>();
+    }
+    const auto& cps = j.at("control_points");
+    if (!cps.is_array() || cps.empty() || !cps[0].is_array() || cps[0].empty())
+      bad(name, "control_points must be a non-empty nu x nv array");
+    const std::size_t fu = cps.size(), fv = cps[0].size();
+    s.count_u = distinct_count(j, name, "knots_u", s.degree_u, s.periodic_u, fu);
+    s.count_v = distinct_count(j, name, "knots_v", s.degree_v, s.periodic_v, fv);
+    s.control.resize(static_cast<std::size_t>(s.count_u) * s.count_v);
+    for (std::size_t i = 0; i < fu; ++i) {
+      if (!cps[i].is_array() || cps[i].size() != fv) bad(name, "control_points rows differ in length");
+      for (std::size_t l = 0; l < fv; ++l) {
+        const auto& c = cps[i][l];
+        if (!c.is_array() || c.size() != 3) bad(name, "a control point must be [x, y, z]");
+        const Point p(c[0].get<double>(), c[1].get<double>(), c[2].get<double>());
+        if (!p.allFinite()) bad(name, "a control point is not finite");
+        const int di = static_cast<int>(i) % s.count_u, dl = static_cast<int>(l) % s.count_v;
+        if (static_cast<int>(i) < s.count_u && static_cast<int>(l) < s.count_v) {
+          s.at(di, dl) = p;
+        } else if ((s.at(di, dl) - p).norm() > 1e-12 * (1 + p.norm())) {
+          bad(name, "a periodic direction's repeated control points differ from the first ones");
+        }
+      }
+    }
+    return s;
+  } catch (const json::exception& e) {
+    bad(name, e.what());
+  }
+}
+
+Surface read_surface_json(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(ErrorCode::kInputUnreadable, "cannot open surface file", Place{.file = path});
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw Error(ErrorCode::kInputSyntax, std::string("malformed JSON: ") + e.what(),
+                Place{.file = path});
+  }
+  return surface_from_json(j, path);
+}
+
+void write_surface_json(const std::string& path, const Surface& surface, const FitReport* report) {
+  json j = surface_to_json(surface);
+  if (report) j["report"] = report_to_json(*report);
+  write_file_atomically(path, [&](std::ostream& out) { out << j.dump() << '\n'; });
+}
+
+void write_report_json(const std::string& path, const FitReport& report) {
+  write_file_atomically(path, [&](std::ostream& out) { out << report_to_json(report).dump(2) << '\n'; });
+}
+
+}  // namespace sfit::io

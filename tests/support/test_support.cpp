@@ -1,0 +1,80 @@
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "sfit/io/rows_reader.h"
+
+namespace sfit::test {
+
+std::string shared_data(const std::string& name) {
+  const std::string p = std::string(SFIT_SHARED_DATA) + "/" + name;
+  return std::filesystem::exists(p) ? p : "";
+}
+
+std::string example(const std::string& name) { return std::string(SFIT_EXAMPLES_DIR) + "/" + name; }
+
+Rows load_rows(const std::string& path) { return io::read_rows(path).rows; }
+
+Rows sample_rows(const std::function<Point(double, double)>& f, const std::vector<int>& counts,
+                 bool closed_u, bool closed_v) {
+  Rows rows;
+  const int M = static_cast<int>(counts.size());
+  for (int j = 0; j < M; ++j) {
+    const double t = closed_v ? static_cast<double>(j) / M : static_cast<double>(j) / (M - 1);
+    const int n = counts[j];
+    for (int k = 0; k < n; ++k) {
+      const double s = n == 1 ? 0.0 : closed_u ? static_cast<double>(k) / n : static_cast<double>(k) / (n - 1);
+      rows.push_point(f(s, t));
+    }
+    rows.end_row();
+  }
+  return rows;
+}
+
+std::string temp_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "sfit";
+  for (char& c : name)
+    if (c == '/') c = '_';
+  const auto dir = std::filesystem::temp_directory_path() / ("sfit-test-" + name + "-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+Run run_cli(const std::string& args, const std::string& stdin_text) {
+  const std::string dir = temp_dir() + "-run";
+  std::filesystem::create_directories(dir);
+  const std::string in = dir + "/stdin", out = dir + "/stdout", err = dir + "/stderr";
+  write_file(in, stdin_text);
+  const std::string cmd = std::string("'") + SFIT_CLI + "' " + args + " <'" + in + "' >'" + out +
+                          "' 2>'" + err + "'";
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = read_file(out);
+  r.err = read_file(err);
+  std::filesystem::remove_all(dir);
+  return r;
+}
+
+}  // namespace sfit::test

@@ -1,0 +1,37 @@
+// Helpers for the tests: data-set paths, sampled surfaces, running the CLI.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sfit/rows.h"
+
+namespace sfit::test {
+
+/// Path of a shared data set (../shared/data/NAME), or "" if the folder is not there.
+std::string shared_data(const std::string& name);
+/// Path of a file in examples/.
+std::string example(const std::string& name);
+/// Reads a .rows file.
+Rows load_rows(const std::string& path);
+
+/// Rows sampled from f(s, t) with s in [0,1] along a row and t in [0,1] across rows:
+/// counts[j] points in row j at s = k / (counts[j] - 1) (closed_u: k / counts[j]), and
+/// t = j / (M - 1) (closed_v: j / M).
+Rows sample_rows(const std::function<Point(double, double)>& f, const std::vector<int>& counts,
+                 bool closed_u = false, bool closed_v = false);
+
+/// Result of running the sfit executable.
+struct Run {
+  int exit_code = -1;
+  std::string out, err;
+};
+/// Runs the CLI with `args` (shell-quoted here), optional stdin text.
+Run run_cli(const std::string& args, const std::string& stdin_text = "");
+/// A fresh empty temporary folder for this test.
+std::string temp_dir();
+std::string read_file(const std::string& path);
+void write_file(const std::string& path, const std::string& text);
+
+}  // namespace sfit::test
