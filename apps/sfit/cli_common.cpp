@@ -1,10 +1,12 @@
 #include "cli_common.h"
 
 #include <charconv>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
 #include "sfit/error.h"
+#include "sfit/io/csv_reader.h"
 #include "sfit/io/rows_reader.h"
 #ifdef SFIT_HAVE_EXCHANGE
 #include "sfit/exchange/readers.h"
@@ -47,6 +49,13 @@ Point parse_tolerance(const std::string& text, const std::string& option) {
 }
 
 Input read_input(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == "csv") {
+    auto r = io::read_csv(path);
+    return Input{std::move(r.rows), std::move(r.first_line), std::move(r.name)};
+  }
 #ifdef SFIT_HAVE_EXCHANGE
   if (exchange::is_exchange_input(path)) {
     auto r = exchange::read_sections(path);

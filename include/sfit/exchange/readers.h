@@ -1,0 +1,38 @@
+// Section curves from CAD files as rows of points: the lofting workflow.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sfit/rows.h"
+
+namespace sfit::exchange {
+
+/// True for the extensions read_sections() handles: .step, .stp, .igs, .iges.
+bool is_exchange_input(const std::string& path);
+
+/// Rows read from a CAD file. `first_line` is empty: STEP/IGES entities have no useful line
+/// numbers, so messages name the row (the curve, in file order) instead.
+struct SectionsFile {
+  Rows rows;
+  std::vector<long> first_line;
+  std::string name;
+};
+
+/// Samples per unit of the curve's length are chosen so that the chord between consecutive
+/// samples deviates from the curve by at most this fraction of the bounding-box diagonal of
+/// all curves (and at least kMinSectionSamples per curve).
+inline constexpr double kSectionDeflection = 1e-5;
+inline constexpr int kMinSectionSamples = 50;
+
+/// Reads every curve of a STEP or IGES file that is not the boundary of a face (edges of
+/// wires and free edges, in file order) and samples each densely into one row
+/// (GCPnts_QuasiUniformDeflection). A closed curve (end = start) is a closed contour: its
+/// last sample, equal to the first, is dropped, as in the .rows format; fit it with
+/// --closed u.
+/// Throws Error: kInputUnreadable (missing, a directory, unreadable), kInputSyntax (not a
+/// STEP/IGES file OCCT can parse), kInputData (no section curves, e.g. only faces; a
+/// degenerate curve).
+SectionsFile read_sections(const std::string& path);
+
+}  // namespace sfit::exchange

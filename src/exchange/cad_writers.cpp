@@ -1,0 +1,132 @@
+#include "sfit/exchange/cad_writers.h"
+
+#include <APIHeaderSection_MakeHeader.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Writer.hxx>
+#include <Interface_Static.hxx>
+#include <Precision.hxx>
+#include <STEPControl_Controller.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TCollection_HAsciiString.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <algorithm>
+#include <array>
+#include <filesystem>
+
+#include "occt_common.h"
+#include "sfit/error.h"
+#include "sfit/io/atomic_file.h"
+
+namespace sfit::exchange {
+
+namespace {
+
+// Our unit names and OCCT's (write.step.unit, IGES global section, xstep.cascade.unit).
+constexpr std::array<std::pair<const char*, const char*>, 8> kUnits{{{"mm", "MM"},
+                                                                     {"cm", "CM"},
+                                                                     {"m", "M"},
+                                                                     {"km", "KM"},
+                                                                     {"um", "UM"},
+                                                                     {"in", "INCH"},
+                                                                     {"ft", "FT"},
+                                                                     {"mi", "MI"}}};
+
+const char* occt_unit(const std::string& units) {
+  for (const auto& [ours, theirs] : kUnits)
+    if (units == ours) return theirs;
+  check_units(units);  // throws
+  return "MM";
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& why) {
+  throw Error(ErrorCode::kOutputWrite, "cannot write output: " + why, Place{.file = path});
+}
+
+TopoDS_Face make_face(const std::string& path, const Surface& s) {
+  if (s.count_u < 1 || s.count_v < 1 ||
+      s.control.size() != static_cast<std::size_t>(s.count_u) * s.count_v)
+    throw Error(ErrorCode::kInternal, "surface with inconsistent control-point counts",
+                Place{.file = path});
+  try {
+    BRepBuilderAPI_MakeFace mf(detail::to_occt(s), Precision::Confusion());
+    if (!mf.IsDone()) fail(path, "OpenCASCADE could not make a face on the surface");
+    return mf.Face();
+  } catch (const Standard_Failure& f) {
+    fail(path, "OpenCASCADE refused the surface (" + detail::describe(f) + ")");
+  }
+}
+
+std::string product_name(const std::string& path, const CadOptions& o) {
+  return o.name.empty() ? std::filesystem::path(path).stem().string() : o.name;
+}
+
+}  // namespace
+
+void check_units(const std::string& units) {
+  for (const auto& [ours, theirs] : kUnits)
+    if (units == ours) return;
+  std::string known;
+  for (const auto& [ours, theirs] : kUnits)
+    known += (known.empty() ? "" : ", ") + std::string(ours);
+  throw Error(ErrorCode::kUsage, "unknown length unit '" + units + "' (known: " + known + ")",
+              Place{.option = "--units"});
+}
+
+void write_step(const std::string& path, const Surface& s, const CadOptions& o) {
+  const char* unit = occt_unit(o.units);
+  io::check_writable(path);
+  detail::quiet_occt();
+  const TopoDS_Face face = make_face(path, s);
+  try {
+    STEPControl_Controller::Init();
+    Interface_Static::SetCVal("write.step.schema", "AP214IS");
+    // The coordinates are in `unit` already: tell OCCT both the session's and the file's
+    // unit so it states the unit without scaling anything.
+    Interface_Static::SetCVal("xstep.cascade.unit", unit);
+    Interface_Static::SetCVal("write.step.unit", unit);
+    Interface_Static::SetCVal("write.step.product.name", product_name(path, o).c_str());
+    STEPControl_Writer writer;
+    if (writer.Transfer(face, STEPControl_AsIs) != IFSelect_RetDone)
+      fail(path, "OpenCASCADE could not translate the face to STEP");
+    APIHeaderSection_MakeHeader header(writer.Model());
+    header.SetName(new TCollection_HAsciiString(product_name(path, o).c_str()));
+    header.SetAuthorValue(1, new TCollection_HAsciiString("sfit"));
+    header.SetOrganizationValue(1, new TCollection_HAsciiString(""));
+    header.SetOriginatingSystem(new TCollection_HAsciiString("sfit 0.1.0 (OpenCASCADE 7.6)"));
+    header.SetDescriptionValue(
+        1, new TCollection_HAsciiString("B-spline surface fitted by sfit (Vergeest 1989, SFIT01)"));
+    io::write_via_temporary(path, [&](const std::string& tmp) {
+      if (writer.Write(tmp.c_str()) != IFSelect_RetDone)
+        fail(path, "OpenCASCADE could not write the STEP file");
+    });
+  } catch (const Standard_Failure& f) {
+    fail(path, "OpenCASCADE failed writing STEP (" + detail::describe(f) + ")");
+  }
+}
+
+void write_iges(const std::string& path, const Surface& s, const CadOptions& o) {
+  const char* unit = occt_unit(o.units);
+  io::check_writable(path);
+  detail::quiet_occt();
+  const TopoDS_Face face = make_face(path, s);
+  try {
+    IGESControl_Controller::Init();
+    Interface_Static::SetCVal("xstep.cascade.unit", unit);
+    Interface_Static::SetCVal("write.iges.unit", unit);
+    // Mode 0: faces as trimmed surfaces (144) on their B-spline surface (128), which every
+    // IGES reader takes; mode 1 (BRep, 186) is less widely read.
+    IGESControl_Writer writer(unit, 0);
+    if (!writer.AddShape(face)) fail(path, "OpenCASCADE could not translate the face to IGES");
+    writer.ComputeModel();
+    io::write_via_temporary(path, [&](const std::string& tmp) {
+      if (!writer.Write(tmp.c_str())) fail(path, "OpenCASCADE could not write the IGES file");
+    });
+  } catch (const Standard_Failure& f) {
+    fail(path, "OpenCASCADE failed writing IGES (" + detail::describe(f) + ")");
+  }
+}
+
+}  // namespace sfit::exchange

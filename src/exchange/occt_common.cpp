@@ -1,0 +1,57 @@
+#include "occt_common.h"
+
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_Printer.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+
+namespace sfit::exchange::detail {
+
+namespace {
+
+void knots(int degree, int count, bool periodic, TColStd_Array1OfReal& k,
+           TColStd_Array1OfInteger& m) {
+  const int n = periodic ? count + 1 : count - degree + 1;
+  k.Resize(1, n, false);
+  m.Resize(1, n, false);
+  for (int i = 0; i < n; ++i) {
+    k(i + 1) = i;
+    m(i + 1) = (!periodic && (i == 0 || i == n - 1)) ? degree + 1 : 1;
+  }
+}
+
+}  // namespace
+
+Handle(Geom_BSplineSurface) to_occt(const Surface& s) {
+  TColgp_Array2OfPnt poles(1, s.count_u, 1, s.count_v);
+  for (int i = 0; i < s.count_u; ++i)
+    for (int j = 0; j < s.count_v; ++j) {
+      const Point& p = s.at(i, j);
+      poles(i + 1, j + 1) = gp_Pnt(p.x(), p.y(), p.z());
+    }
+  TColStd_Array1OfReal ku(1, 1), kv(1, 1);
+  TColStd_Array1OfInteger mu(1, 1), mv(1, 1);
+  knots(s.degree_u, s.count_u, s.periodic_u, ku, mu);
+  knots(s.degree_v, s.count_v, s.periodic_v, kv, mv);
+  return new Geom_BSplineSurface(poles, ku, kv, mu, mv, s.degree_u, s.degree_v, s.periodic_u,
+                                 s.periodic_v);
+}
+
+void quiet_occt() {
+  static const bool done = [] {
+    const Message_SequenceOfPrinters& printers = Message::DefaultMessenger()->Printers();
+    for (Message_SequenceOfPrinters::Iterator it(printers); it.More(); it.Next())
+      it.Value()->SetTraceLevel(Message_Fail);
+    return true;
+  }();
+  (void)done;
+}
+
+std::string describe(const Standard_Failure& f) {
+  const char* msg = f.GetMessageString();
+  return std::string(f.DynamicType()->Name()) + (msg && *msg ? std::string(": ") + msg : "");
+}
+
+}  // namespace sfit::exchange::detail

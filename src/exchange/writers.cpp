@@ -1,0 +1,61 @@
+#include "sfit/exchange/writers.h"
+
+#include <algorithm>
+
+#include "sfit/error.h"
+#include "sfit/exchange/cad_writers.h"
+#include "sfit/exchange/mesh_writers.h"
+#include "sfit/exchange/tessellate.h"
+
+namespace sfit::exchange {
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot + 1);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+Mesh mesh_for(const Surface& s, const WriteOptions& o) {
+  if (o.mesh_density != 0) return tessellate(s, o.mesh_density, o.mesh_density);
+  const Density d = choose_density(s, default_chord(s, o.tolerance));
+  return tessellate(s, d.samples_u, d.samples_v);
+}
+
+}  // namespace
+
+std::vector<std::string> writer_extensions() {
+  return {"step", "stp", "igs", "iges", "obj", "stl", "ply", "vtk", "vts"};
+}
+
+void write_surface(const std::string& path, const Surface& s, const WriteOptions& o,
+                   const FitResult* fit, const Rows* rows) {
+  const std::string e = lower_extension(path);
+  CadOptions cad;
+  cad.units = o.units;
+  if (e == "step" || e == "stp") return write_step(path, s, cad);
+  if (e == "igs" || e == "iges") return write_iges(path, s, cad);
+  if (e == "obj" && !o.mesh) return write_obj_freeform(path, s);
+  if (e == "obj") return write_obj_mesh(path, mesh_for(s, o));
+  if (e == "stl") return write_stl(path, mesh_for(s, o));
+  if (e == "ply") return write_ply(path, mesh_for(s, o));
+  if (e == "vtk" || e == "vts") {
+    VtkFields f;
+    f.curvature = o.fields;
+    if (o.fields) {
+      f.fit = fit;
+      f.rows = rows;
+    }
+    const Mesh m = mesh_for(s, o);
+    return e == "vtk" ? write_vtk(path, s, m, f) : write_vts(path, s, m, f);
+  }
+  throw Error(ErrorCode::kUsage,
+              "cannot write '" + path + "': unknown output extension '" + e + "'",
+              Place{.option = "-o"});
+}
+
+}  // namespace sfit::exchange
