@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -21,9 +22,9 @@ struct FitArgs {
   std::vector<std::string> outputs;
   std::string report;
   int degree = 3;
-  int degree_u = -1, degree_v = -1;
-  std::string tol;
-  double tol_rel = -1;
+  std::optional<int> degree_u, degree_v;  // unset: --degree
+  std::optional<std::string> tol;
+  std::optional<double> tol_rel;
   std::string closed;
   std::string search = "fast";
   int threads = 0;
@@ -33,13 +34,13 @@ struct FitArgs {
   bool fields = false;
 };
 
-// Maps a row-level error of the fit onto the input's file:line.
+// Maps a data error of the fit onto the input file (and file:line for a row-level one).
 [[noreturn]] void rethrow_with_file(const Error& e, const Input& in) {
   Place p = e.place();
-  if (p.file.empty() && p.option.empty() && p.row >= 0 &&
-      p.row < static_cast<long>(in.first_line.size())) {
+  if (p.file.empty() && p.option.empty()) {
     p.file = in.name;
-    p.line = in.first_line[p.row] + std::max(0L, p.point);
+    if (p.row >= 0 && p.row < static_cast<long>(in.first_line.size()))
+      p.line = in.first_line[p.row] + std::max(0L, p.point);
   }
   throw Error(e.code(), e.message(), p, e.values());
 }
@@ -53,16 +54,16 @@ std::string vec(const Point& p) {
 int run_fit(const FitArgs& a) {
   verbose = !a.quiet;
   FitOptions o;
-  o.degree_u = a.degree_u > 0 ? a.degree_u : a.degree;
-  o.degree_v = a.degree_v > 0 ? a.degree_v : a.degree;
+  o.degree_u = a.degree_u.value_or(a.degree);
+  o.degree_v = a.degree_v.value_or(a.degree);
   auto check_degree = [](int d, const char* opt) {
     if (d < 1 || d > 20)
       throw Error(ErrorCode::kUsage, fmt::format("degree {} is out of range 1 ... 20", d),
                   Place{.option = opt}, {static_cast<double>(d)});
   };
   check_degree(a.degree, "--degree");
-  if (a.degree_u != -1) check_degree(a.degree_u, "--degree-u");
-  if (a.degree_v != -1) check_degree(a.degree_v, "--degree-v");
+  if (a.degree_u) check_degree(*a.degree_u, "--degree-u");
+  if (a.degree_v) check_degree(*a.degree_v, "--degree-v");
   if (a.closed == "u" || a.closed == "uv" || a.closed == "vu") o.closed_u = true;
   if (a.closed == "v" || a.closed == "uv" || a.closed == "vu") o.closed_v = true;
   if (!a.closed.empty() && a.closed != "none" && !o.closed_u && !o.closed_v)
@@ -70,13 +71,15 @@ int run_fit(const FitArgs& a) {
                 Place{.option = "--closed"});
   o.search = a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast;
   o.threads = a.threads;
-  if (!a.tol.empty() && a.tol_rel >= 0)
+  if (a.tol && a.tol_rel)
     throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both", Place{.option = "--tol-rel"});
-  if (!(a.tol_rel < 0 || (a.tol_rel >= 0 && a.tol_rel <= 1)))
-    throw Error(ErrorCode::kUsage, "must be a fraction 0 ... 1 of the bounding-box diagonal",
-                Place{.option = "--tol-rel"}, {a.tol_rel});
+  if (a.tol_rel && !(*a.tol_rel >= 0 && *a.tol_rel <= 1))
+    throw Error(
+        ErrorCode::kUsage,
+        fmt::format("must be a fraction 0 ... 1 of the bounding-box diagonal, got {}", *a.tol_rel),
+        Place{.option = "--tol-rel"}, {*a.tol_rel});
   Point tol_abs = Point::Constant(-1);
-  if (!a.tol.empty()) tol_abs = parse_tolerance(a.tol, "--tol");
+  if (a.tol) tol_abs = parse_tolerance(*a.tol, "--tol");
   if (a.outputs.empty() && a.report.empty())
     throw Error(ErrorCode::kUsage, "nothing to write: give -o OUT.json (and/or --report)",
                 Place{.option = "-o"});
@@ -89,7 +92,7 @@ int run_fit(const FitArgs& a) {
 
   Input in = read_input(a.input);
   const BoundingBox box = bounding_box(in.rows);
-  const double fraction = a.tol_rel >= 0 ? a.tol_rel : 1e-3;
+  const double fraction = a.tol_rel.value_or(1e-3);
   o.tolerance = tol_abs.x() >= 0 ? tol_abs : Point::Constant(fraction * box.diagonal());
 
   std::size_t lo = SIZE_MAX, hi = 0;
@@ -172,7 +175,7 @@ void add_fit_command(CLI::App& app, Runner& run) {
   c->add_option("--search", args->search, "count search: fast (default) or linear (the paper's)")
       ->check(CLI::IsMember({"fast", "linear"}));
   c->add_option("--threads", args->threads, "threads (0: all cores); results do not depend on it")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 4096));
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");
   c->add_option("--mesh-density", args->mesh_density,
                 "tessellation samples per direction (default: from the tolerance)");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "parallel.h"
@@ -13,6 +14,15 @@
 #include "sfit/rerepresent.h"
 
 namespace sfit {
+namespace {
+
+std::string format_point(const Point& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
+  return buf;
+}
+
+}  // namespace
 
 void validate(const Rows& rows, const FitOptions& o) {
   auto check_degree = [](int d, const char* name) {
@@ -24,13 +34,6 @@ void validate(const Rows& rows, const FitOptions& o) {
   };
   check_degree(o.degree_u, "degree_u");
   check_degree(o.degree_v, "degree_v");
-  for (int a = 0; a < 3; ++a) {
-    const double t = o.tolerance[a];
-    if (!(t >= 0.0) || !std::isfinite(t))
-      throw Error(ErrorCode::kUsage,
-                  std::string("tolerance ") + "xyz"[a] + " must be a finite number >= 0",
-                  Place{.option = "tolerance"}, {t});
-  }
   if (o.threads < 0)
     throw Error(ErrorCode::kUsage, "threads must be >= 0", Place{.option = "threads"},
                 {static_cast<double>(o.threads)});
@@ -58,6 +61,42 @@ void validate(const Rows& rows, const FitOptions& o) {
         throw Error(ErrorCode::kInputData, "coordinate is not a finite number",
                     Place{.row = jl, .point = static_cast<long>(k)},
                     {row[k].x(), row[k].y(), row[k].z()});
+  }
+  // The data must span a surface: not one point, not one straight line; and its size must
+  // leave room for squares in double precision (1e-150 ... 1e150; an offset costs nothing).
+  const BoundingBox box = bounding_box(rows);
+  const Point& p0 = rows.points().front();
+  if ((box.max - box.min).maxCoeff() == 0)
+    throw Error(ErrorCode::kInputData,
+                "all " + std::to_string(rows.total_points()) + " points coincide at " +
+                    format_point(p0) + ": they span no surface",
+                Place{}, {p0.x(), p0.y(), p0.z()});
+  const double size = box.diagonal();
+  if (!(size >= 1e-150 && size <= 1e150))
+    throw Error(ErrorCode::kInputData,
+                "the data's size is out of the range sfit computes in (1e-150 ... 1e150): "
+                "coordinates span " +
+                    format_point(box.min) + " ... " + format_point(box.max),
+                Place{}, {size});
+  const Point* far = &p0;
+  for (const Point& p : rows.points())
+    if ((p - p0).squaredNorm() > (*far - p0).squaredNorm()) far = &p;
+  const Point dir = (*far - p0).normalized();
+  double off_line = 0;
+  for (const Point& p : rows.points())
+    off_line = std::max(off_line, ((p - p0) - (p - p0).dot(dir) * dir).norm());
+  if (off_line <= kRoundoffRelative * size)
+    throw Error(ErrorCode::kInputData,
+                "all points lie on one straight line through " + format_point(p0) + " and " +
+                    format_point(*far) + ": they span no surface",
+                Place{}, {off_line});
+  // Checked after the data, as a tolerance relative to an overflowing extent is infinite.
+  for (int a = 0; a < 3; ++a) {
+    const double t = o.tolerance[a];
+    if (!(t >= 0.0) || !std::isfinite(t))
+      throw Error(ErrorCode::kUsage,
+                  std::string("tolerance ") + "xyz"[a] + " must be a finite number >= 0",
+                  Place{.option = "tolerance"}, {t});
   }
 }
 

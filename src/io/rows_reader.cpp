@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <sys/stat.h>
@@ -106,8 +107,14 @@ class Parser {
     if (b != e && *b == '+') ++b;
     double x = 0;
     const auto r = std::from_chars(b, e, x);
-    if (r.ec == std::errc::result_out_of_range)
-      fail(ErrorCode::kInputData, col, "'" + show(tok) + "' is out of the range of a double");
+    if (r.ec == std::errc::result_out_of_range && r.ptr == e) {
+      // Too large is an error; too small (1e-400) underflows to 0 or a subnormal, as strtod.
+      const std::string copy(b, e);
+      x = std::strtod(copy.c_str(), nullptr);
+      if (std::isinf(x))
+        fail(ErrorCode::kInputData, col, "'" + show(tok) + "' is out of the range of a double");
+      return x;
+    }
     if (r.ec != std::errc() || r.ptr != e || b == e)
       fail(ErrorCode::kInputSyntax, col, "'" + show(tok) + "' is not a number");
     if (!std::isfinite(x))
