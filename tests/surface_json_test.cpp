@@ -1,1 +1,88 @@
+#include "sfit/io/surface_json.h"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "sfit/error.h"
+#include "test_support.h"
+
+namespace sfit::io {
+namespace {
+
+Surface sample_surface(bool pu, bool pv) {
+  Surface s;
+  s.degree_u = 3;
+  s.degree_v = 2;
+  s.periodic_u = pu;
+  s.periodic_v = pv;
+  s.count_u = 6;
+  s.count_v = 5;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 5; ++j)
+      s.control.emplace_back(i + 0.1 / 3, j * 1e-17 + 1.0 / 7, std::sqrt(i * j + 2.0));
+  return s;
+}
+
+TEST(SurfaceJson, FollowsTheContract) {
+  const Surface s = sample_surface(true, false);
+  const auto j = surface_to_json(s);
+  EXPECT_EQ(j["type"], "bspline_surface");
+  EXPECT_EQ(j["degree"], nlohmann::json({3, 2}));
+  EXPECT_EQ(j["periodic"], nlohmann::json({true, false}));
+  // Periodic u stored in full: 6 + 3 control points, knots 6 + 2*3 + 1 long.
+  ASSERT_EQ(j["control_points"].size(), 9u);
+  ASSERT_EQ(j["control_points"][0].size(), 5u);
+  EXPECT_EQ(j["knots_u"].size(), 9u + 3 + 1);
+  EXPECT_EQ(j["knots_v"].size(), 5u + 2 + 1);
+  EXPECT_EQ(j["control_points"][6][2], j["control_points"][0][2]);  // wrap copy
+}
+
+TEST(SurfaceJson, ReloadsBitForBit) {
+  for (bool pu : {false, true})
+    for (bool pv : {false, true}) {
+      const Surface s = sample_surface(pu, pv);
+      const std::string path = test::temp_dir() + "/s.json";
+      write_surface_json(path, s);
+      const Surface r = read_surface_json(path);
+      EXPECT_EQ(r.degree_u, s.degree_u);
+      EXPECT_EQ(r.periodic_u, pu);
+      EXPECT_EQ(r.periodic_v, pv);
+      ASSERT_EQ(r.control.size(), s.control.size());
+      EXPECT_EQ(0,
+                std::memcmp(r.control.data(), s.control.data(), s.control.size() * sizeof(Point)));
+    }
+}
+
+TEST(SurfaceJson, ReportHasTheContractKeys) {
+  FitReport r;
+  r.points = 10;
+  r.rows = 2;
+  r.row_counts = {4, 5};
+  const auto j = report_to_json(r);
+  for (const char* key : {"points", "rows", "tolerance", "max_deviation", "worst",
+                          "within_tolerance", "control_points", "row_counts", "seconds"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_TRUE(j["worst"].contains("deviation"));
+}
+
+TEST(SurfaceJson, RejectsBrokenSurfaces) {
+  auto j = surface_to_json(sample_surface(false, false));
+  j["knots_u"].erase(0);
+  EXPECT_THROW(surface_from_json(j, "x.json"), Error);
+  auto k = surface_to_json(sample_surface(true, false));
+  k["control_points"][7][1][0] = 99.0;  // a wrap copy that differs
+  EXPECT_THROW(surface_from_json(k, "x.json"), Error);
+  const std::string path = test::temp_dir() + "/bad.json";
+  test::write_file(path, "{ not json");
+  try {
+    read_surface_json(path);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kInputSyntax);
+  }
+}
+
+}  // namespace
+}  // namespace sfit::io

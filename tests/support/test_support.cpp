@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <stdexcept>
 
 #include <array>
 #include <cstdio>
@@ -18,9 +22,13 @@ std::string shared_data(const std::string& name) {
   return std::filesystem::exists(p) ? p : "";
 }
 
-std::string example(const std::string& name) { return std::string(SFIT_EXAMPLES_DIR) + "/" + name; }
+std::string example(const std::string& name) {
+  return std::string(SFIT_EXAMPLES_DIR) + "/" + name;
+}
 
-Rows load_rows(const std::string& path) { return io::read_rows(path).rows; }
+Rows load_rows(const std::string& path) {
+  return io::read_rows(path).rows;
+}
 
 Rows sample_rows(const std::function<Point(double, double)>& f, const std::vector<int>& counts,
                  bool closed_u, bool closed_v) {
@@ -30,7 +38,9 @@ Rows sample_rows(const std::function<Point(double, double)>& f, const std::vecto
     const double t = closed_v ? static_cast<double>(j) / M : static_cast<double>(j) / (M - 1);
     const int n = counts[j];
     for (int k = 0; k < n; ++k) {
-      const double s = n == 1 ? 0.0 : closed_u ? static_cast<double>(k) / n : static_cast<double>(k) / (n - 1);
+      const double s = n == 1     ? 0.0
+                       : closed_u ? static_cast<double>(k) / n
+                                  : static_cast<double>(k) / (n - 1);
       rows.push_point(f(s, t));
     }
     rows.end_row();
@@ -43,7 +53,8 @@ std::string temp_dir() {
   std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "sfit";
   for (char& c : name)
     if (c == '/') c = '_';
-  const auto dir = std::filesystem::temp_directory_path() / ("sfit-test-" + name + "-" + std::to_string(::getpid()));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("sfit-test-" + name + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
@@ -62,12 +73,14 @@ void write_file(const std::string& path, const std::string& text) {
 }
 
 Run run_cli(const std::string& args, const std::string& stdin_text) {
-  const std::string dir = temp_dir() + "-run";
-  std::filesystem::create_directories(dir);
+  // Its own folder for the captured streams: never the calling test's temp_dir().
+  std::string tmpl = (std::filesystem::temp_directory_path() / "sfit-run-XXXXXX").string();
+  if (!::mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+  const std::string dir = tmpl;
   const std::string in = dir + "/stdin", out = dir + "/stdout", err = dir + "/stderr";
   write_file(in, stdin_text);
-  const std::string cmd = std::string("'") + SFIT_CLI + "' " + args + " <'" + in + "' >'" + out +
-                          "' 2>'" + err + "'";
+  const std::string cmd =
+      std::string("'") + SFIT_CLI + "' " + args + " <'" + in + "' >'" + out + "' 2>'" + err + "'";
   const int status = std::system(cmd.c_str());
   Run r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
