@@ -1,8 +1,8 @@
 // The library in a dozen lines: read rows, fit within 1e-3 of the diagonal, print the report.
 #include <cstdio>
 
-#include "sfit/io/rows_reader.h"
 #include "sfit/error.h"
+#include "sfit/io/rows_reader.h"
 #include "sfit/surface_fit.h"
 
 int main(int argc, char** argv) {

@@ -20,9 +20,9 @@ enum class CountSearch {
 /// A least-squares curve and what it achieved.
 struct CurveFit {
   Curve curve;
-  std::vector<double> parameters;  ///< t of each data point (paper_parameters())
+  std::vector<double> parameters;       ///< t of each data point (paper_parameters())
   Point max_deviation = Point::Zero();  ///< max_j |C(t_j) - D_j| per axis
-  int solves = 0;                  ///< least-squares solves the search needed
+  int solves = 0;                       ///< least-squares solves the search needed
 };
 
 /// Least-squares fit of `points` by a uniform curve of `degree` with exactly `count` control
@@ -33,8 +33,8 @@ CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool pe
 
 struct CurveFitOptions {
   int degree = 3;
-  bool periodic = false;             ///< closed contour (first point not repeated at the end)
-  Point bound = Point::Zero();       ///< per-axis bound on |C(t_j) - D_j| (T/2 in a surface fit)
+  bool periodic = false;        ///< closed contour (first point not repeated at the end)
+  Point bound = Point::Zero();  ///< per-axis bound on |C(t_j) - D_j| (T/2 in a surface fit)
   CountSearch search = CountSearch::kFast;
 };
 

@@ -10,19 +10,18 @@
 namespace sfit {
 
 struct DeviationCheck {
-  Point max_deviation = Point::Zero();   ///< max over all points of |S(u,v) - D| per axis
-  long worst_row = -1;                   ///< the point that uses most of its tolerance
+  Point max_deviation = Point::Zero();  ///< max over all points of |S(u,v) - D| per axis
+  long worst_row = -1;                  ///< the point that uses most of its tolerance
   long worst_index = -1;
-  Point worst_deviation = Point::Zero(); ///< S(u,v) - D there, signed (its direction)
-  double worst_ratio = 0;                ///< max over points and axes of |S - D| / T
-  bool within = true;                    ///< every point within tolerance + roundoff per axis
+  Point worst_deviation = Point::Zero();  ///< S(u,v) - D there, signed (its direction)
+  double worst_ratio = 0;                 ///< max over points and axes of |S - D| / T
+  bool within = true;                     ///< every point within tolerance + roundoff per axis
 };
 
 /// Evaluates the surface at every data point's assigned parameters (u per point, in the
 /// order of rows.points(); v per row) and measures the per-axis deviation.
 /// A point is within if |S - D|_a <= tolerance_a + roundoff on every axis a.
-DeviationCheck check_deviation(const Surface& surface, const Rows& rows,
-                               std::span<const double> u, std::span<const double> v,
-                               const Point& tolerance, double roundoff);
+DeviationCheck check_deviation(const Surface& surface, const Rows& rows, std::span<const double> u,
+                               std::span<const double> v, const Point& tolerance, double roundoff);
 
 }  // namespace sfit

@@ -10,11 +10,11 @@
 namespace sfit {
 
 struct Rerepresentation {
-  Curve curve;                      ///< degree and count of the common knot vector
-  std::vector<double> parameters;   ///< parameter of each data point on `curve`
+  Curve curve;                          ///< degree and count of the common knot vector
+  std::vector<double> parameters;       ///< parameter of each data point on `curve`
   Point max_deviation = Point::Zero();  ///< max_k |curve(parameters_k) - D_k| per axis
-  bool holds = false;               ///< every data point within the bound
-  int repair_rounds = 0;            ///< 0: the paper's re-representation already held
+  bool holds = false;                   ///< every data point within the bound
+  int repair_rounds = 0;                ///< 0: the paper's re-representation already held
 };
 
 /// Re-represents `fit` (a curve fitted to `data`) as a uniform curve of `degree` with `count`

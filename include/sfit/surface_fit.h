@@ -16,13 +16,13 @@ namespace sfit {
 inline constexpr double kRoundoffRelative = 1e-10;
 
 struct FitOptions {
-  int degree_u = 3;               ///< degree along the rows, 1 ... 20
-  int degree_v = 3;               ///< degree across the rows, 1 ... 20
+  int degree_u = 3;                 ///< degree along the rows, 1 ... 20
+  int degree_v = 3;                 ///< degree across the rows, 1 ... 20
   Point tolerance = Point::Zero();  ///< T = (Tx, Ty, Tz) >= 0, absolute; 0 interpolates
-  bool closed_u = false;          ///< rows are closed contours (first point not repeated)
-  bool closed_v = false;          ///< the sequence of rows is closed
+  bool closed_u = false;            ///< rows are closed contours (first point not repeated)
+  bool closed_v = false;            ///< the sequence of rows is closed
   CountSearch search = CountSearch::kFast;
-  int threads = 0;                ///< 0: all cores; results are identical for any count
+  int threads = 0;  ///< 0: all cores; results are identical for any count
   /// Called between stages: (stage name, items done, items in the stage).
   std::function<void(std::string_view, std::size_t, std::size_t)> progress;
 };
@@ -37,19 +37,19 @@ struct FitReport {
   long worst_index = -1;
   Point worst_deviation = Point::Zero();  ///< surface minus data there, signed
   bool within_tolerance = false;
-  int count_u = 0;                      ///< nu (distinct control points along u)
-  int count_v = 0;                      ///< nv
+  int count_u = 0;  ///< nu (distinct control points along u)
+  int count_v = 0;  ///< nv
   int degree_u = 0, degree_v = 0;
   bool closed_u = false, closed_v = false;
-  std::vector<int> row_counts;          ///< minimal count of each row (curve stage)
-  std::vector<int> column_counts;       ///< minimal count of each column (transverse stage)
-  int raised_u = 0;        ///< times nu was raised above max(row_counts) by the guarantee
-  int raised_v = 0;        ///< times nv was raised above max(column_counts)
-  int repaired_rows = 0;   ///< rows whose paper re-representation needed the repair
+  std::vector<int> row_counts;     ///< minimal count of each row (curve stage)
+  std::vector<int> column_counts;  ///< minimal count of each column (transverse stage)
+  int raised_u = 0;                ///< times nu was raised above max(row_counts) by the guarantee
+  int raised_v = 0;                ///< times nv was raised above max(column_counts)
+  int repaired_rows = 0;           ///< rows whose paper re-representation needed the repair
   int repaired_columns = 0;
-  int tightenings = 0;     ///< times both stage budgets were halved after a failed final check
-  long solves = 0;         ///< least-squares solves made by the count searches
-  double roundoff = 0;     ///< absolute round-off allowance used at T = 0
+  int tightenings = 0;  ///< times both stage budgets were halved after a failed final check
+  long solves = 0;      ///< least-squares solves made by the count searches
+  double roundoff = 0;  ///< absolute round-off allowance used at T = 0
   double seconds = 0;
 };
 

@@ -7,10 +7,13 @@
 
 namespace sfit {
 
-double Curve::domain_end() const { return sfit::domain_end(degree, count(), periodic); }
+double Curve::domain_end() const {
+  return sfit::domain_end(degree, count(), periodic);
+}
 
 std::vector<double> Curve::knots() const {
-  return periodic ? periodic_uniform_knots(degree, count()) : clamped_uniform_knots(degree, count());
+  return periodic ? periodic_uniform_knots(degree, count())
+                  : clamped_uniform_knots(degree, count());
 }
 
 Point Curve::evaluate(double t) const {

@@ -10,8 +10,7 @@
 
 namespace sfit {
 
-CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic,
-                              int count) {
+CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count) {
   const int n_points = static_cast<int>(points.size());
   CurveFit fit;
   fit.curve.degree = degree;
@@ -28,9 +27,9 @@ CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool pe
     lsq.add(first[j], b, points[j]);
   }
   if (!lsq.solve(fit.curve.control))
-    throw Error(ErrorCode::kInternal, "singular least-squares system in the curve stage",
-                Place{}, {static_cast<double>(degree), static_cast<double>(count),
-                          static_cast<double>(n_points)});
+    throw Error(
+        ErrorCode::kInternal, "singular least-squares system in the curve stage", Place{},
+        {static_cast<double>(degree), static_cast<double>(count), static_cast<double>(n_points)});
   const auto& P = fit.curve.control;
   for (int j = 0; j < n_points; ++j) {
     const double* b = &basis[static_cast<std::size_t>(j) * w];

@@ -9,30 +9,46 @@ Error::Error(ErrorCode code, const std::string& message, Place place, std::vecto
       place_(std::move(place)),
       values_(std::move(values)) {}
 
-int Error::exit_code() const noexcept { return sfit::exit_code(code_); }
+int Error::exit_code() const noexcept {
+  return sfit::exit_code(code_);
+}
 
 int exit_code(ErrorCode code) noexcept {
   switch (code) {
-    case ErrorCode::kUsage: return 2;
-    case ErrorCode::kInputUnreadable: return 3;
-    case ErrorCode::kInputSyntax: return 4;
-    case ErrorCode::kInputData: return 5;
-    case ErrorCode::kOutputWrite: return 6;
-    case ErrorCode::kToleranceNotMet: return 7;
-    case ErrorCode::kInternal: return 8;
+    case ErrorCode::kUsage:
+      return 2;
+    case ErrorCode::kInputUnreadable:
+      return 3;
+    case ErrorCode::kInputSyntax:
+      return 4;
+    case ErrorCode::kInputData:
+      return 5;
+    case ErrorCode::kOutputWrite:
+      return 6;
+    case ErrorCode::kToleranceNotMet:
+      return 7;
+    case ErrorCode::kInternal:
+      return 8;
   }
   return 8;
 }
 
 const char* to_string(ErrorCode code) noexcept {
   switch (code) {
-    case ErrorCode::kUsage: return "usage";
-    case ErrorCode::kInputUnreadable: return "input-unreadable";
-    case ErrorCode::kInputSyntax: return "input-syntax";
-    case ErrorCode::kInputData: return "input-data";
-    case ErrorCode::kOutputWrite: return "output-write";
-    case ErrorCode::kToleranceNotMet: return "tolerance-not-met";
-    case ErrorCode::kInternal: return "internal";
+    case ErrorCode::kUsage:
+      return "usage";
+    case ErrorCode::kInputUnreadable:
+      return "input-unreadable";
+    case ErrorCode::kInputSyntax:
+      return "input-syntax";
+    case ErrorCode::kInputData:
+      return "input-data";
+    case ErrorCode::kOutputWrite:
+      return "output-write";
+    case ErrorCode::kToleranceNotMet:
+      return "tolerance-not-met";
+    case ErrorCode::kInternal:
+      return "internal";
   }
   return "internal";
 }

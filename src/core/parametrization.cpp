@@ -7,7 +7,9 @@
 
 namespace sfit {
 namespace {
-double periodic_offset(int degree) { return degree % 2 == 0 ? 0.5 : 0.0; }
+double periodic_offset(int degree) {
+  return degree % 2 == 0 ? 0.5 : 0.0;
+}
 double wrap(double t, double period) {
   double r = std::fmod(t, period);
   if (r < 0) r += period;
@@ -63,7 +65,8 @@ double ReparameterMap::operator()(double t) const {
   if (n == 1) return g_[0];
   if (t <= tau_.front()) return g_.front();
   if (t >= tau_.back()) return g_.back();
-  const std::size_t l = static_cast<std::size_t>(std::upper_bound(tau_.begin(), tau_.end(), t) - tau_.begin()) - 1;
+  const std::size_t l =
+      static_cast<std::size_t>(std::upper_bound(tau_.begin(), tau_.end(), t) - tau_.begin()) - 1;
   const double d = tau_[l + 1] - tau_[l];
   const double f = d > 0 ? (t - tau_[l]) / d : 0.0;
   return g_[l] + f * (g_[l + 1] - g_[l]);

@@ -7,8 +7,12 @@
 
 namespace sfit {
 
-double Surface::u_end() const { return domain_end(degree_u, count_u, periodic_u); }
-double Surface::v_end() const { return domain_end(degree_v, count_v, periodic_v); }
+double Surface::u_end() const {
+  return domain_end(degree_u, count_u, periodic_u);
+}
+double Surface::v_end() const {
+  return domain_end(degree_v, count_v, periodic_v);
+}
 
 Point Surface::evaluate(double u, double v) const {
   std::array<double, kMaxDegree + 1> bu, bv;

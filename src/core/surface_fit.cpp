@@ -50,12 +50,11 @@ void validate(const Rows& rows, const FitOptions& o) {
   for (std::size_t j = 0; j < M; ++j) {
     const auto row = rows[j];
     const long jl = static_cast<long>(j);
-    if (row.empty())
-      throw Error(ErrorCode::kInputData, "row has no points", Place{.row = jl});
+    if (row.empty()) throw Error(ErrorCode::kInputData, "row has no points", Place{.row = jl});
     if (o.closed_u && row.size() == 2)
       throw Error(ErrorCode::kInputData,
-                  "a closed row needs at least 3 points (or 1 for a pole), got 2",
-                  Place{.row = jl}, {2.0});
+                  "a closed row needs at least 3 points (or 1 for a pole), got 2", Place{.row = jl},
+                  {2.0});
     for (std::size_t k = 0; k < row.size(); ++k)
       if (!row[k].allFinite())
         throw Error(ErrorCode::kInputData, "coordinate is not a finite number",
@@ -131,7 +130,8 @@ StageResult run_stage(std::size_t n_curves, GetPoints&& points_of, int degree, b
   StageResult st;
   std::vector<CurveFit> fits(n_curves);
   CurveFitOptions co{degree, periodic, bound, search};
-  detail::parallel_for(n_curves, threads, [&](std::size_t i) { fits[i] = fit_curve(points_of(i), co); });
+  detail::parallel_for(n_curves, threads,
+                       [&](std::size_t i) { fits[i] = fit_curve(points_of(i), co); });
   st.counts.resize(n_curves);
   int common = degree + 1;
   for (std::size_t i = 0; i < n_curves; ++i) {
@@ -179,22 +179,21 @@ Attempt fit_once(const Rows& rows, const FitOptions& o, const Point& bound, int 
   // Curve stage on the rows and re-representation on nu (METHOD.md 3-4).
   report("rows", 0, M);
   StageResult rs = run_stage(
-      M, [&](std::size_t j) { return rows[j]; }, o.degree_u, o.closed_u, bound, o.search,
-      threads, false, longest);
+      M, [&](std::size_t j) { return rows[j]; }, o.degree_u, o.closed_u, bound, o.search, threads,
+      false, longest);
   report("rows", M, M);
   const int nu = rs.common;
 
   // Transverse stage: column i holds control point i of every row curve (METHOD.md 5).
   std::vector<Point> columns(static_cast<std::size_t>(nu) * M);
   for (std::size_t j = 0; j < M; ++j)
-    for (int i = 0; i < nu; ++i) columns[static_cast<std::size_t>(i) * M + j] = rs.curves[j].curve.control[i];
+    for (int i = 0; i < nu; ++i)
+      columns[static_cast<std::size_t>(i) * M + j] = rs.curves[j].curve.control[i];
   report("columns", 0, static_cast<std::size_t>(nu));
   StageResult cs = run_stage(
       static_cast<std::size_t>(nu),
-      [&](std::size_t i) {
-        return std::span<const Point>(columns.data() + i * M, M);
-      },
-      o.degree_v, o.closed_v, bound, o.search, threads, true, M);
+      [&](std::size_t i) { return std::span<const Point>(columns.data() + i * M, M); }, o.degree_v,
+      o.closed_v, bound, o.search, threads, true, M);
   report("columns", static_cast<std::size_t>(nu), static_cast<std::size_t>(nu));
   const int nv = cs.common;
 
@@ -252,8 +251,9 @@ FitResult fit_surface(const Rows& rows, const FitOptions& o) {
     // at T = 0 the round-off allowance.
     Point bound;
     for (int a = 0; a < 3; ++a)
-      bound[a] = o.tolerance[a] > 0 ? std::max(0.5 * o.tolerance[a] * (1 - 1e-9) * shrink, 0.5 * roundoff)
-                                    : 0.5 * roundoff;
+      bound[a] = o.tolerance[a] > 0
+                     ? std::max(0.5 * o.tolerance[a] * (1 - 1e-9) * shrink, 0.5 * roundoff)
+                     : 0.5 * roundoff;
     at = fit_once(centred, o, bound, threads);
     check = check_deviation(at.surface, centred, at.u, at.v, o.tolerance, roundoff);
     if (check.within || tightenings == 3) break;

@@ -1,5 +1,6 @@
 #include "sfit/io/rows_reader.h"
 
+#include <sys/stat.h>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -7,7 +8,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
-#include <sys/stat.h>
 
 #include "sfit/error.h"
 

@@ -13,7 +13,9 @@ namespace sfit::io {
 using nlohmann::json;
 
 namespace {
-json point(const Point& p) { return json::array({p.x(), p.y(), p.z()}); }
+json point(const Point& p) {
+  return json::array({p.x(), p.y(), p.z()});
+}
 }  // namespace
 
 json surface_to_json(const Surface& s) {
@@ -40,8 +42,8 @@ json report_to_json(const FitReport& r) {
   j["rows"] = r.rows;
   j["tolerance"] = point(r.tolerance);
   j["max_deviation"] = point(r.max_deviation);
-  j["worst"] = {{"row", r.worst_row}, {"index", r.worst_index},
-                {"deviation", point(r.worst_deviation)}};
+  j["worst"] = {
+      {"row", r.worst_row}, {"index", r.worst_index}, {"deviation", point(r.worst_deviation)}};
   j["within_tolerance"] = r.within_tolerance;
   j["control_points"] = {r.count_u, r.count_v};
   j["row_counts"] = r.row_counts;
@@ -71,13 +73,15 @@ int distinct_count(const json& j, const std::string& name, const char* key, int 
     bad(name, std::string(key) + " must have " + std::to_string(full + degree + 1) + " entries");
   const int n = static_cast<int>(full) - (periodic ? degree : 0);
   if (n < degree + 1) bad(name, std::string("too few control points along ") + key);
-  const auto expect = periodic ? periodic_uniform_knots(degree, n) : clamped_uniform_knots(degree, n);
+  const auto expect =
+      periodic ? periodic_uniform_knots(degree, n) : clamped_uniform_knots(degree, n);
   // sfit writes uniform knots; accept any affine image of them (a shifted or scaled domain
   // would need a reparametrisation sfit does not do, so refuse it clearly).
   for (std::size_t i = 0; i < expect.size(); ++i) {
     const double v = k[i].get<double>();
     if (!std::isfinite(v) || std::abs(v - expect[i]) > 1e-9 * (1 + std::abs(expect[i])))
-      bad(name, std::string(key) + " are not sfit's uniform knots (entry " + std::to_string(i) + ")");
+      bad(name,
+          std::string(key) + " are not sfit's uniform knots (entry " + std::to_string(i) + ")");
   }
   return n;
 }
@@ -105,7 +109,8 @@ Surface surface_from_json(const json& j, const std::string& name) {
     s.count_v = distinct_count(j, name, "knots_v", s.degree_v, s.periodic_v, fv);
     s.control.resize(static_cast<std::size_t>(s.count_u) * s.count_v);
     for (std::size_t i = 0; i < fu; ++i) {
-      if (!cps[i].is_array() || cps[i].size() != fv) bad(name, "control_points rows differ in length");
+      if (!cps[i].is_array() || cps[i].size() != fv)
+        bad(name, "control_points rows differ in length");
       for (std::size_t l = 0; l < fv; ++l) {
         const auto& c = cps[i][l];
         if (!c.is_array() || c.size() != 3) bad(name, "a control point must be [x, y, z]");
@@ -127,7 +132,8 @@ Surface surface_from_json(const json& j, const std::string& name) {
 
 Surface read_surface_json(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(ErrorCode::kInputUnreadable, "cannot open surface file", Place{.file = path});
+  if (!in)
+    throw Error(ErrorCode::kInputUnreadable, "cannot open surface file", Place{.file = path});
   json j;
   try {
     j = json::parse(in);
@@ -145,7 +151,8 @@ void write_surface_json(const std::string& path, const Surface& surface, const F
 }
 
 void write_report_json(const std::string& path, const FitReport& report) {
-  write_file_atomically(path, [&](std::ostream& out) { out << report_to_json(report).dump(2) << '\n'; });
+  write_file_atomically(path,
+                        [&](std::ostream& out) { out << report_to_json(report).dump(2) << '\n'; });
 }
 
 }  // namespace sfit::io

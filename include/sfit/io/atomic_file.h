@@ -12,7 +12,8 @@ namespace sfit::io {
 /// fills the stream, the file is flushed and fsync'ed, then renamed onto `path`. On any
 /// failure the temporary file is removed, an existing `path` is untouched, and
 /// Error(kOutputWrite) names the path and the reason.
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write);
 
 /// For writers that only take a file name (OpenCASCADE, libpng): `write` gets the temporary
 /// path to create; it is renamed onto `path` when `write` returns without throwing.
