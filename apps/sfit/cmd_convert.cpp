@@ -16,6 +16,8 @@ struct ConvertArgs {
   std::vector<std::string> outputs;
   bool mesh = false;
   int mesh_density = 0;
+  bool fields = false;
+  std::string units = "mm";
   bool quiet = false;
 };
 
@@ -27,8 +29,9 @@ int run_convert(const ConvertArgs& a) {
     check_output_extension(out);
     io::check_writable(out);
   }
+  check_units(a.units);
   const Surface s = io::read_surface_json(a.input);
-  OutputContext ctx{s, nullptr, nullptr, a.input, a.mesh, a.mesh_density, false};
+  OutputContext ctx{s, nullptr, nullptr, a.input, a.mesh, a.mesh_density, a.fields, a.units};
   for (const auto& out : a.outputs) {
     write_output(out, ctx);
     say("wrote " + out);
@@ -45,6 +48,10 @@ void add_convert_command(CLI::App& app, Runner& run) {
   c->add_option("-o,--output", args->outputs, "output file(s); the extension picks the format");
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh");
   c->add_option("--mesh-density", args->mesh_density, "tessellation samples per direction");
+  c->add_flag("--fields", args->fields, "add curvature point data (.vtk/.vts)");
+  c->add_option("--units", args->units,
+                "length unit the STEP/IGES file states (mm, cm, m, km, um, in, ft, mi)")
+      ->default_val("mm");
   c->add_flag("-q,--quiet", args->quiet, "print errors only");
   c->footer("Example:\n  sfit convert hull.json -o hull.step -o hull.stl");
   c->callback([args, &run] { run = [args] { return run_convert(*args); }; });

@@ -32,6 +32,7 @@ struct FitArgs {
   bool mesh = false;
   int mesh_density = 0;
   bool fields = false;
+  std::string units = "mm";
 };
 
 // Maps a data error of the fit onto the input file (and file:line for a row-level one).
@@ -89,6 +90,7 @@ int run_fit(const FitArgs& a) {
     io::check_writable(out);
   }
   if (!a.report.empty()) io::check_writable(a.report);
+  check_units(a.units);
 
   Input in = read_input(a.input);
   const BoundingBox box = bounding_box(in.rows);
@@ -138,7 +140,7 @@ int run_fit(const FitArgs& a) {
                 fmt::format("the surface misses the tolerance at row {} point {} by {}; nothing written",
                             r.worst_row, r.worst_index, vec(r.worst_deviation)),
                 Place{.file = in.name}, {r.worst_deviation.x(), r.worst_deviation.y(), r.worst_deviation.z()});
-  OutputContext ctx{fit.surface, &fit, &in.rows, in.name, a.mesh, a.mesh_density, a.fields};
+  OutputContext ctx{fit.surface, &fit, &in.rows, in.name, a.mesh, a.mesh_density, a.fields, a.units};
   for (const auto& out : a.outputs) {
     write_output(out, ctx);
     say("wrote " + out);
@@ -155,10 +157,12 @@ int run_fit(const FitArgs& a) {
 void add_fit_command(CLI::App& app, Runner& run) {
   auto args = std::make_shared<FitArgs>();
   CLI::App* c = app.add_subcommand("fit", "fit a surface to rows of points");
-  c->add_option("INPUT", args->input, "rows of points: .rows file ('-' for standard input)")
+  c->add_option("INPUT", args->input, "rows of points: .rows or .csv file ('-': .rows on standard input), or "
+                "section curves in a .step/.iges file (each curve one row)")
       ->required();
   c->add_option("-o,--output", args->outputs,
-                "output file; the extension picks the format (.json; repeat -o for several)");
+                "output file; the extension picks the format (.json .step .igs .obj .stl .ply "
+                ".vtk .vts; repeat -o for several)");
   c->add_option("--report", args->report, "write the fit report as JSON");
   c->add_option("--degree", args->degree, "degree in both directions, 1 ... 20")
       ->default_val(3);
@@ -180,6 +184,10 @@ void add_fit_command(CLI::App& app, Runner& run) {
   c->add_option("--mesh-density", args->mesh_density,
                 "tessellation samples per direction (default: from the tolerance)");
   c->add_flag("--fields", args->fields, "add deviation and curvature point data (.vtk/.vts)");
+  c->add_option("--units", args->units,
+                "length unit the STEP/IGES file states (mm, cm, m, km, um, in, ft, mi); "
+                "coordinates are written unchanged")
+      ->default_val("mm");
   c->add_flag("-q,--quiet", args->quiet, "print errors only");
   c->footer(
       "Examples:\n"

@@ -6,6 +6,7 @@
 #include "sfit/error.h"
 #include "sfit/io/surface_json.h"
 #ifdef SFIT_HAVE_EXCHANGE
+#include "sfit/exchange/cad_writers.h"
 #include "sfit/exchange/writers.h"
 #endif
 
@@ -27,6 +28,7 @@ const std::map<std::string, Writer>& writers() {
         o.mesh = c.mesh;
         o.mesh_density = c.mesh_density;
         o.fields = c.fields;
+        o.units = c.units;
         o.tolerance = c.fit ? c.fit->report.tolerance.minCoeff() : 0.0;
         exchange::write_surface(p, c.surface, o, c.fit, c.rows);
       };
@@ -62,6 +64,14 @@ void check_output_extension(const std::string& path) {
   throw Error(ErrorCode::kUsage,
               "cannot write '" + path + "': unknown output extension '" + e + "' (known: " + known + ")",
               Place{.option = "-o"});
+}
+
+void check_units(const std::string& units) {
+#ifdef SFIT_HAVE_EXCHANGE
+  exchange::check_units(units);
+#else
+  (void)units;
+#endif
 }
 
 void write_output(const std::string& path, const OutputContext& context) {

@@ -21,6 +21,7 @@ struct OutputContext {
   bool mesh = false;        ///< --mesh: OBJ as a tessellated mesh instead of free-form
   int mesh_density = 0;     ///< --mesh-density: samples per direction (0: automatic)
   bool fields = false;      ///< --fields: deviation/curvature point data (VTK)
+  std::string units = "mm";  ///< --units: length unit stated in STEP/IGES
 };
 
 /// Lower-case extension of `path` without the dot ("json", "step", ...).
@@ -29,6 +30,8 @@ std::string extension_of(const std::string& path);
 std::vector<std::string> output_extensions();
 /// Throws Error(kUsage, option "-o") if no writer handles the extension of `path`.
 void check_output_extension(const std::string& path);
+/// Throws Error(kUsage, option "--units") unless STEP/IGES can state `units`.
+void check_units(const std::string& units);
 /// Writes `path` in the format of its extension (atomically).
 void write_output(const std::string& path, const OutputContext& context);
 

@@ -5,6 +5,9 @@
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Writer.hxx>
+#include <IGESData_IGESModel.hxx>
+#include <IGESData_IGESWriter.hxx>
+#include <IGESSelect_WorkLibrary.hxx>
 #include <Interface_Static.hxx>
 #include <Precision.hxx>
 #include <STEPControl_Controller.hxx>
@@ -12,6 +15,7 @@
 #include <TCollection_HAsciiString.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
+#include <UnitsMethods.hxx>
 #include <algorithm>
 #include <array>
 #include <filesystem>
@@ -24,22 +28,52 @@ namespace sfit::exchange {
 
 namespace {
 
-// Our unit names and OCCT's (write.step.unit, IGES global section, xstep.cascade.unit).
-constexpr std::array<std::pair<const char*, const char*>, 8> kUnits{{{"mm", "MM"},
-                                                                     {"cm", "CM"},
-                                                                     {"m", "M"},
-                                                                     {"km", "KM"},
-                                                                     {"um", "UM"},
-                                                                     {"in", "INCH"},
-                                                                     {"ft", "FT"},
-                                                                     {"mi", "MI"}}};
+// Our unit names, OCCT's (write.step.unit, IGES global section) and the size in millimetres.
+struct Unit {
+  const char* ours;
+  const char* occt;
+  double mm;
+};
+constexpr std::array<Unit, 8> kUnits{{{"mm", "MM", 1.0},
+                                      {"cm", "CM", 10.0},
+                                      {"m", "M", 1000.0},
+                                      {"km", "KM", 1e6},
+                                      {"um", "UM", 1e-3},
+                                      {"in", "INCH", 25.4},
+                                      {"ft", "FT", 304.8},
+                                      {"mi", "MI", 1609344.0}}};
 
-const char* occt_unit(const std::string& units) {
-  for (const auto& [ours, theirs] : kUnits)
-    if (units == ours) return theirs;
+const Unit& find_unit(const std::string& units) {
+  for (const auto& u : kUnits)
+    if (units == u.ours) return u;
   check_units(units);  // throws
-  return "MM";
+  return kUnits[0];
 }
+
+// OCCT keeps the session's length unit in globals (Interface_Static and UnitsMethods) and
+// scales shapes from it to the file's unit. Our coordinates are in the file's unit already:
+// set the session unit to it for the transfer, and restore the caller's afterwards.
+class SessionUnit {
+ public:
+  explicit SessionUnit(const Unit& u)
+      : static_(Interface_Static::IsSet("xstep.cascade.unit")
+                    ? Interface_Static::CVal("xstep.cascade.unit")
+                    : "MM"),
+        methods_(UnitsMethods::GetCasCadeLengthUnit()) {
+    Interface_Static::SetCVal("xstep.cascade.unit", u.occt);
+    UnitsMethods::SetCasCadeLengthUnit(u.mm);
+  }
+  ~SessionUnit() {
+    Interface_Static::SetCVal("xstep.cascade.unit", static_.c_str());
+    UnitsMethods::SetCasCadeLengthUnit(methods_);
+  }
+  SessionUnit(const SessionUnit&) = delete;
+  SessionUnit& operator=(const SessionUnit&) = delete;
+
+ private:
+  std::string static_;
+  double methods_;
+};
 
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
   throw Error(ErrorCode::kOutputWrite, "cannot write output: " + why, Place{.file = path});
@@ -66,27 +100,24 @@ std::string product_name(const std::string& path, const CadOptions& o) {
 }  // namespace
 
 void check_units(const std::string& units) {
-  for (const auto& [ours, theirs] : kUnits)
-    if (units == ours) return;
+  for (const Unit& u : kUnits)
+    if (units == u.ours) return;
   std::string known;
-  for (const auto& [ours, theirs] : kUnits)
-    known += (known.empty() ? "" : ", ") + std::string(ours);
+  for (const Unit& u : kUnits) known += (known.empty() ? "" : ", ") + std::string(u.ours);
   throw Error(ErrorCode::kUsage, "unknown length unit '" + units + "' (known: " + known + ")",
               Place{.option = "--units"});
 }
 
 void write_step(const std::string& path, const Surface& s, const CadOptions& o) {
-  const char* unit = occt_unit(o.units);
+  const Unit& unit = find_unit(o.units);
   io::check_writable(path);
   detail::quiet_occt();
   const TopoDS_Face face = make_face(path, s);
   try {
     STEPControl_Controller::Init();
+    const SessionUnit session(unit);
     Interface_Static::SetCVal("write.step.schema", "AP214IS");
-    // The coordinates are in `unit` already: tell OCCT both the session's and the file's
-    // unit so it states the unit without scaling anything.
-    Interface_Static::SetCVal("xstep.cascade.unit", unit);
-    Interface_Static::SetCVal("write.step.unit", unit);
+    Interface_Static::SetCVal("write.step.unit", unit.occt);
     Interface_Static::SetCVal("write.step.product.name", product_name(path, o).c_str());
     STEPControl_Writer writer;
     if (writer.Transfer(face, STEPControl_AsIs) != IFSelect_RetDone)
@@ -108,21 +139,27 @@ void write_step(const std::string& path, const Surface& s, const CadOptions& o) 
 }
 
 void write_iges(const std::string& path, const Surface& s, const CadOptions& o) {
-  const char* unit = occt_unit(o.units);
+  const Unit& unit = find_unit(o.units);
   io::check_writable(path);
   detail::quiet_occt();
   const TopoDS_Face face = make_face(path, s);
   try {
     IGESControl_Controller::Init();
-    Interface_Static::SetCVal("xstep.cascade.unit", unit);
-    Interface_Static::SetCVal("write.iges.unit", unit);
+    const SessionUnit session(unit);
+    Interface_Static::SetCVal("write.iges.unit", unit.occt);
     // Mode 0: faces as trimmed surfaces (144) on their B-spline surface (128), which every
     // IGES reader takes; mode 1 (BRep, 186) is less widely read.
-    IGESControl_Writer writer(unit, 0);
+    IGESControl_Writer writer(unit.occt, 0);
+    writer.Model()->ChangeGlobalSection().SetCascadeUnit(unit.mm);
     if (!writer.AddShape(face)) fail(path, "OpenCASCADE could not translate the face to IGES");
     writer.ComputeModel();
-    io::write_via_temporary(path, [&](const std::string& tmp) {
-      if (!writer.Write(tmp.c_str())) fail(path, "OpenCASCADE could not write the IGES file");
+    // IGESControl_Writer::Write() prints reals with 10 significant digits; print 17 so the
+    // file round-trips our doubles.
+    IGESData_IGESWriter printer(writer.Model());
+    printer.FloatWriter().SetFormat("%.16E");
+    printer.SendModel(IGESSelect_WorkLibrary::DefineProtocol());
+    io::write_file_atomically(path, [&](std::ostream& out) {
+      if (!printer.Print(out)) fail(path, "OpenCASCADE could not write the IGES file");
     });
   } catch (const Standard_Failure& f) {
     fail(path, "OpenCASCADE failed writing IGES (" + detail::describe(f) + ")");
