@@ -13,6 +13,9 @@
 #include "sfit/io/atomic_file.h"
 #include "sfit/io/surface_json.h"
 #include "sfit/surface_fit.h"
+#ifdef SFIT_HAVE_RENDER
+#include "picture_options.h"
+#endif
 
 namespace sfit::cli {
 namespace {
@@ -33,7 +36,17 @@ struct FitArgs {
   int mesh_density = 0;
   bool fields = false;
   std::string units = "mm";
+#ifdef SFIT_HAVE_RENDER
+  std::vector<std::string> pngs;  // --png pictures
+  PictureArgs picture;
+#endif
 };
+
+#ifdef SFIT_HAVE_RENDER
+bool wants_pictures(const FitArgs& a) { return !a.pngs.empty(); }
+#else
+bool wants_pictures(const FitArgs&) { return false; }
+#endif
 
 // Maps a data error of the fit onto the input file (and file:line for a row-level one).
 [[noreturn]] void rethrow_with_file(const Error& e, const Input& in) {
@@ -81,7 +94,7 @@ int run_fit(const FitArgs& a) {
         Place{.option = "--tol-rel"}, {*a.tol_rel});
   Point tol_abs = Point::Constant(-1);
   if (a.tol) tol_abs = parse_tolerance(*a.tol, "--tol");
-  if (a.outputs.empty() && a.report.empty())
+  if (a.outputs.empty() && a.report.empty() && !wants_pictures(a))
     throw Error(ErrorCode::kUsage, "nothing to write: give -o OUT.json (and/or --report)",
                 Place{.option = "-o"});
   // Refuse impossible outputs before reading or fitting anything.
@@ -91,6 +104,9 @@ int run_fit(const FitArgs& a) {
   }
   if (!a.report.empty()) io::check_writable(a.report);
   check_units(a.units);
+#ifdef SFIT_HAVE_RENDER
+  check_picture_outputs(a.pngs, a.picture, "--png");
+#endif
 
   Input in = read_input(a.input);
   const BoundingBox box = bounding_box(in.rows);
@@ -149,6 +165,9 @@ int run_fit(const FitArgs& a) {
     io::write_report_json(a.report, r);
     say("wrote " + a.report);
   }
+#ifdef SFIT_HAVE_RENDER
+  write_fit_pictures(a.pngs, a.picture, fit, in.rows, in.name);
+#endif
   return 0;
 }
 
@@ -188,6 +207,13 @@ void add_fit_command(CLI::App& app, Runner& run) {
                 "length unit the STEP/IGES file states (mm, cm, m, km, um, in, ft, mi); "
                 "coordinates are written unchanged")
       ->default_val("mm");
+#ifdef SFIT_HAVE_RENDER
+  CLI::Option* png = c->add_option("--png", args->pngs,
+                                   "draw the fitted surface to a PNG picture (repeat for several; "
+                                   "see the Picture options)");
+  png->group("Picture");
+  add_picture_options(c, args->picture, "Picture", png);
+#endif
   c->add_flag("-q,--quiet", args->quiet, "print errors only");
   c->footer(
       "Examples:\n"

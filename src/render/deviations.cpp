@@ -1,0 +1,130 @@
+#include "sfit/render/deviations.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "nearest.h"
+#include "sfit/error.h"
+
+namespace sfit::render {
+
+std::vector<Point> deviations_at_parameters(const Surface& s, const Rows& rows,
+                                            std::span<const double> u, std::span<const double> v) {
+  if (u.size() != rows.total_points() || v.size() != rows.size())
+    throw Error(ErrorCode::kInternal,
+                "deviations_at_parameters: parameter counts differ from the data", Place{},
+                {static_cast<double>(u.size()), static_cast<double>(v.size())});
+  std::vector<Point> d(rows.total_points());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const std::size_t first = rows.offsets()[j];
+    const auto row = rows[j];
+    for (std::size_t k = 0; k < row.size(); ++k)
+      d[first + k] = s.evaluate(u[first + k], v[j]) - row[k];
+  }
+  return d;
+}
+
+double tolerance_ratio(const Point& d, const Point& t, double zero_scale) {
+  double r = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double scale = t[a] > 0 ? t[a] : zero_scale;
+    if (scale > 0) r = std::max(r, std::abs(d[a]) / scale);
+  }
+  return r;
+}
+
+namespace {
+
+double wrap_or_clamp(double t, double end, bool periodic) {
+  if (periodic) {
+    t = std::fmod(t, end);
+    return t < 0 ? t + end : t;
+  }
+  return std::clamp(t, 0.0, end);
+}
+
+ClosestPoint refine(const Surface& s, const Point& q, double u, double v) {
+  const double ue = s.u_end(), ve = s.v_end();
+  Point d[6];
+  s.derivatives(u, v, d);
+  double f = (d[0] - q).squaredNorm();
+  for (int it = 0; it < 30; ++it) {
+    const Point r = d[0] - q;
+    const Eigen::Vector2d g(d[1].dot(r), d[2].dot(r));
+    Eigen::Matrix2d h;
+    h << d[1].dot(d[1]) + d[3].dot(r), d[1].dot(d[2]) + d[4].dot(r), d[1].dot(d[2]) + d[4].dot(r),
+        d[2].dot(d[2]) + d[5].dot(r);
+    if (!(h(0, 0) > 0 && h.determinant() > 0)) {  // not convex here: Gauss-Newton
+      h << d[1].dot(d[1]), d[1].dot(d[2]), d[1].dot(d[2]), d[2].dot(d[2]);
+      h.diagonal().array() += 1e-12 * (h.trace() + 1e-300);
+    }
+    Eigen::Vector2d step = -h.ldlt().solve(g);
+    if (!step.allFinite()) break;
+    bool moved = false;
+    for (int k = 0; k < 12; ++k, step *= 0.5) {
+      const double nu = wrap_or_clamp(u + step.x(), ue, s.periodic_u);
+      const double nv = wrap_or_clamp(v + step.y(), ve, s.periodic_v);
+      const double nf = (s.evaluate(nu, nv) - q).squaredNorm();
+      if (nf < f) {
+        moved = std::abs(nu - u) > 1e-13 * (1 + ue) || std::abs(nv - v) > 1e-13 * (1 + ve);
+        u = nu;
+        v = nv;
+        f = nf;
+        break;
+      }
+    }
+    if (!moved) break;
+    s.derivatives(u, v, d);
+  }
+  return {u, v, s.evaluate(u, v) - q};
+}
+
+}  // namespace
+
+std::vector<ClosestPoint> closest_points(const Surface& s, std::span<const Point> points) {
+  if (points.empty()) return {};
+  const double ue = s.u_end(), ve = s.v_end();
+  const int gu = std::clamp(4 * static_cast<int>(std::ceil(ue)), 16, 2000);
+  const int gv = std::clamp(4 * static_cast<int>(std::ceil(ve)), 16, 2000);
+  std::vector<Point> samples;
+  std::vector<std::pair<double, double>> params;
+  samples.reserve(static_cast<std::size_t>(gu + 1) * (gv + 1));
+  for (int i = 0; i <= gu; ++i)
+    for (int j = 0; j <= gv; ++j) {
+      const double u = ue * i / gu, v = ve * j / gv;
+      samples.push_back(s.evaluate(u, v));
+      params.emplace_back(u, v);
+    }
+  const detail::NearestPoint grid(std::move(samples));
+  std::vector<ClosestPoint> out(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const auto [u0, v0] = params[grid.nearest(points[k])];
+    out[k] = refine(s, points[k], u0, v0);
+  }
+  return out;
+}
+
+std::vector<double> row_parameters(const Surface& s, const Rows& rows,
+                                   std::span<const ClosestPoint> closest) {
+  std::vector<double> v(rows.size());
+  const double ve = s.v_end();
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const std::size_t first = rows.offsets()[j], n = rows[j].size();
+    std::vector<double> vs;
+    for (std::size_t k = 0; k < n; ++k) {
+      double x = closest[first + k].v;
+      if (s.periodic_v) {  // unwrap around the first point's v
+        const double ref = closest[first].v;
+        while (x - ref > ve / 2) x -= ve;
+        while (ref - x > ve / 2) x += ve;
+      }
+      vs.push_back(x);
+    }
+    std::nth_element(vs.begin(), vs.begin() + vs.size() / 2, vs.end());
+    v[j] = wrap_or_clamp(vs[vs.size() / 2], ve, s.periodic_v);
+  }
+  return v;
+}
+
+}  // namespace sfit::render
