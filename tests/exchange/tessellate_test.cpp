@@ -1,0 +1,181 @@
+#include "sfit/exchange/tessellate.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "exchange_cases.h"
+#include "sfit/error.h"
+
+namespace sfit::exchange {
+namespace {
+
+// z = x^2 + y^2 over [0, 1]^2 as one biquadratic Bezier patch (u = x, v = y).
+Surface paraboloid() {
+  Surface s;
+  s.degree_u = s.degree_v = 2;
+  s.count_u = s.count_v = 3;
+  const double a[3] = {0, 0, 1};  // Bezier coefficients of t^2
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) s.control.emplace_back(i / 2.0, j / 2.0, a[i] + a[j]);
+  return s;
+}
+
+TEST(Tessellate, CountsFollowTheTopology) {
+  for (const auto* c : test::must_pass_cases()) {
+    SCOPED_TRACE(c->name);
+    const Surface& s = c->fit.surface;
+    const Mesh m = tessellate(s, 7, 5);
+    EXPECT_EQ(m.vertices.size(), 35u);
+    EXPECT_EQ(m.normals.size(), 35u);
+    const std::size_t qu = s.periodic_u ? 7 : 6, qv = s.periodic_v ? 5 : 4;
+    EXPECT_EQ(m.triangles.size(), 2 * qu * qv);
+    // Vertex (a, b) is S(u_a, v_b); the last open sample is the domain end.
+    EXPECT_LE((m.vertices[m.index(3, 2)] - s.evaluate(m.u[3], m.v[2])).norm(), 0.0);
+    EXPECT_EQ(m.u.back(), s.periodic_u ? s.u_end() * 6 / 7 : s.u_end());
+  }
+}
+
+// Each edge of a closed direction is shared by exactly two triangles: no crack at the seam.
+TEST(Tessellate, ClosedDirectionsAreWatertight) {
+  for (const auto* c : test::must_pass_cases()) {
+    SCOPED_TRACE(c->name);
+    const Surface& s = c->fit.surface;
+    const Mesh m = tessellate(s, 12, 9);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    for (const auto& t : m.triangles)
+      for (int k = 0; k < 3; ++k) {
+        auto a = t[k], b = t[(k + 1) % 3];
+        ++edges[{std::min(a, b), std::max(a, b)}];
+      }
+    std::size_t boundary = 0;
+    for (const auto& [e, n] : edges) {
+      EXPECT_LE(n, 2);
+      if (n == 1) ++boundary;
+    }
+    // Open ends only: the u = 0 and u = end columns have quads_v edges each, the v ends quads_u.
+    const std::size_t want =
+        (s.periodic_u ? 0 : 2 * m.quads_v()) + (s.periodic_v ? 0 : 2 * m.quads_u());
+    EXPECT_EQ(boundary, want);
+    if (s.periodic_u && s.periodic_v) EXPECT_EQ(boundary, 0u);
+  }
+}
+
+// The mesh at the default density stays within the chordal error it promises: measured at
+// every triangle's edge midpoints and centroid against the surface at the same parameters.
+TEST(Tessellate, DefaultDensityHoldsTheChordalError) {
+  for (const auto& c : test::fitted_cases()) {
+    if (!c.bundled && c.name != "shared/teapot_body" && c.name != "shared/volcano_small") continue;
+    SCOPED_TRACE(c.name);
+    const Surface& s = c.fit.surface;
+    const double T = c.fit.report.tolerance.minCoeff();
+    const double chord = default_chord(s, T);
+    EXPECT_EQ(chord, T / 4);
+    const Density d = choose_density(s, chord);
+    EXPECT_LE(d.bound, chord);
+    const Mesh m = tessellate(s, d.samples_u, d.samples_v);
+    double worst = 0;
+    for (int b = 0; b < m.quads_v(); ++b)
+      for (int a = 0; a < m.quads_u(); ++a) {
+        const double u0 = m.u[a], v0 = m.v[b];
+        const double u1 = a + 1 < m.samples_u ? m.u[a + 1] : s.u_end();
+        const double v1 = b + 1 < m.samples_v ? m.v[b + 1] : s.v_end();
+        const Point p00 = m.vertices[m.index(a, b)], p10 = m.vertices[m.index(a + 1, b)],
+                    p11 = m.vertices[m.index(a + 1, b + 1)], p01 = m.vertices[m.index(a, b + 1)];
+        // Triangles (00, 10, 11) and (00, 11, 01): linear interpolation in (u, v).
+        auto check = [&](double fu, double fv, const Point& lin) {
+          worst =
+              std::max(worst, (s.evaluate(u0 + fu * (u1 - u0), v0 + fv * (v1 - v0)) - lin).norm());
+        };
+        check(0.5, 0, (p00 + p10) / 2);
+        check(1, 0.5, (p10 + p11) / 2);
+        check(0.5, 0.5, (p00 + p11) / 2);
+        check(0, 0.5, (p00 + p01) / 2);
+        check(0.5, 1, (p01 + p11) / 2);
+        check(2.0 / 3, 1.0 / 3, (p00 + p10 + p11) / 3);
+        check(1.0 / 3, 2.0 / 3, (p00 + p11 + p01) / 3);
+      }
+    EXPECT_LE(worst, chord);
+    std::printf("[ measure  ] %-26s mesh %4d x %4d, %7zu triangles, chordal error %.3g = %.2f T\n",
+                c.name.c_str(), d.samples_u, d.samples_v, m.triangles.size(), worst, worst / T);
+  }
+}
+
+TEST(Tessellate, NormalsAreUnitAndFollowSuCrossSv) {
+  for (const auto* c : test::must_pass_cases()) {
+    SCOPED_TRACE(c->name);
+    const Surface& s = c->fit.surface;
+    const Mesh m = tessellate(s, 20, 15);
+    for (int b = 0; b < m.samples_v; ++b)
+      for (int a = 0; a < m.samples_u; ++a) {
+        const Point& n = m.normals[m.index(a, b)];
+        EXPECT_NEAR(n.norm(), 1.0, 1e-12);
+        Point d[6];
+        s.derivatives(m.u[a], m.v[b], d);
+        const Point x = d[1].cross(d[2]);
+        if (x.norm() > 1e-6 * d[1].norm() * d[2].norm()) EXPECT_GT(n.dot(x), 0);
+      }
+    // Triangles wind counter-clockwise about the normals (at the default density: a coarse
+    // mesh of a sharp leading edge may fold).
+    const Density dd = choose_density(s, default_chord(s, c->fit.report.tolerance.minCoeff()));
+    const Mesh fine = tessellate(s, dd.samples_u, dd.samples_v);
+    std::size_t agree = 0;
+    for (const auto& t : fine.triangles) {
+      const Point f = (fine.vertices[t[1]] - fine.vertices[t[0]])
+                          .cross(fine.vertices[t[2]] - fine.vertices[t[0]]);
+      if (f.dot(fine.normals[t[0]] + fine.normals[t[1]] + fine.normals[t[2]]) > 0) ++agree;
+    }
+    // All but a few: on the fitted blade 64 of 48384 triangles wind against the mean of
+    // their vertex normals, where the normal turns sharply within one cell.
+    EXPECT_GE(agree, fine.triangles.size() - fine.triangles.size() / 500);
+  }
+}
+
+TEST(Tessellate, CurvatureOfAParaboloid) {
+  const Surface s = paraboloid();
+  EXPECT_NEAR(s.evaluate(0.5, 0.5).z(), 0.5, 1e-15);
+  const Curvature k = curvature(s, 0, 0);  // z = x^2 + y^2 at the apex: H = 2, K = 4
+  EXPECT_NEAR(k.mean, 2.0, 1e-12);
+  EXPECT_NEAR(k.gaussian, 4.0, 1e-12);
+  // Away from the apex, K = 4 / (1 + 4 r^2)^2.
+  const Curvature k2 = curvature(s, 0.5, 0.25);
+  const double r2 = 0.25 + 0.0625;
+  EXPECT_NEAR(k2.gaussian, 4 / std::pow(1 + 4 * r2, 2), 1e-12);
+  // A flat surface: the density is the minimum (4 per span) and the bound is 0.
+  Surface flat = s;
+  for (auto& p : flat.control) p.z() = 0;
+  const Density d = choose_density(flat, 1e-6);
+  EXPECT_EQ(d.samples_u, 5);
+  EXPECT_EQ(d.bound, 0);
+  EXPECT_EQ(curvature(flat, 0.3, 0.3).gaussian, 0);
+}
+
+TEST(Tessellate, DensityShrinksWithTheSquareRootOfTheChord) {
+  const Surface s = paraboloid();
+  const Density a = choose_density(s, 1e-4), b = choose_density(s, 1e-6);
+  EXPECT_NEAR(static_cast<double>(b.samples_u - 1) / (a.samples_u - 1), 10.0, 0.2);
+  EXPECT_LE(a.bound, 1e-4);
+  EXPECT_LE(b.bound, 1e-6);
+  const Density capped = choose_density(s, 1e-16, 100);
+  EXPECT_EQ(capped.samples_u, 100);
+  EXPECT_GT(capped.bound, 1e-16);  // the cap is honest about what it gives
+}
+
+TEST(Tessellate, RefusesBadDensities) {
+  const Surface s = paraboloid();
+  for (auto [nu, nv] : {std::pair{1, 5}, {5, 0}, {-3, 4}, {200000, 2}}) {
+    try {
+      tessellate(s, nu, nv);
+      FAIL() << nu << " x " << nv;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::kUsage);
+      EXPECT_EQ(e.place().option, "--mesh-density");
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sfit::exchange
