@@ -9,6 +9,7 @@
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Reader.hxx>
+#include <Interface_InterfaceModel.hxx>
 #include <STEPControl_Controller.hxx>
 #include <STEPControl_Reader.hxx>
 #include <TopExp_Explorer.hxx>
@@ -55,19 +56,16 @@ void sample_edge(const TopoDS_Edge& edge, double deflection, double same, std::v
   if (BRep_Tool::Degenerated(edge)) return;
   BRepAdaptor_Curve c(edge);
   std::vector<Point> pts;
+  // As many samples as the deflection needs, spread uniformly in arc length (points bunched
+  // where the curve bends would make the fit's chord-length parameters uneven).
+  int n = kMinSectionSamples;
   GCPnts_QuasiUniformDeflection d(c, deflection);
-  if (d.IsDone() && d.NbPoints() >= kMinSectionSamples) {
-    for (int k = 1; k <= d.NbPoints(); ++k) {
-      const gp_Pnt p = d.Value(k);
-      pts.emplace_back(p.X(), p.Y(), p.Z());
-    }
-  } else {
-    GCPnts_QuasiUniformAbscissa a(c, kMinSectionSamples);
-    if (!a.IsDone()) return;
-    for (int k = 1; k <= a.NbPoints(); ++k) {
-      const gp_Pnt p = c.Value(a.Parameter(k));
-      pts.emplace_back(p.X(), p.Y(), p.Z());
-    }
+  if (d.IsDone()) n = std::max(n, d.NbPoints());
+  GCPnts_QuasiUniformAbscissa a(c, n);
+  if (!a.IsDone()) return;
+  for (int k = 1; k <= a.NbPoints(); ++k) {
+    const gp_Pnt p = c.Value(a.Parameter(k));
+    pts.emplace_back(p.X(), p.Y(), p.Z());
   }
   if (edge.Orientation() == TopAbs_REVERSED) std::reverse(pts.begin(), pts.end());
   for (const Point& p : pts)
@@ -111,7 +109,8 @@ SectionsFile read_sections(const std::string& path) {
     } else {
       IGESControl_Controller::Init();
       IGESControl_Reader reader;
-      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone || reader.Model().IsNull() ||
+          reader.Model()->NbEntities() == 0)
         fail(ErrorCode::kInputSyntax, path, "not an IGES file OpenCASCADE can read");
       reader.TransferRoots();
       shape = reader.OneShape();
