@@ -12,9 +12,14 @@ namespace sfit {
 
 /// How the smallest control-point count is searched (METHOD.md section 7.1).
 enum class CountSearch {
-  kLinear,  ///< the paper's SFIT01: count = degree+1, degree+2, ... until the fit holds
-  kFast,    ///< default: galloping then bisection on the count, then a downward check of the
-            ///< counts just below (README "Count search" says where it differs from kLinear)
+  kLinear,  ///< the paper's SFIT01: count = degree+1, degree+2, ... until the fit holds; the
+            ///< smallest count that holds
+  kFast,    ///< default: from a starting count (the hint, e.g. the neighbouring row's count),
+            ///< gallop down or up, then bisect, to a count that holds while the one below does
+            ///< not. Equal to kLinear where holding is monotone in the count; README "Count
+            ///< search" says where it is not and by how much the counts differ there.
+  kKnown,   ///< take the hint as the count (one solve); if it does not hold, search as kFast.
+            ///< The oracle of bench/: what the fit costs when the counts are known.
 };
 
 /// A least-squares curve and what it achieved.
@@ -36,6 +41,7 @@ struct CurveFitOptions {
   bool periodic = false;        ///< closed contour (first point not repeated at the end)
   Point bound = Point::Zero();  ///< per-axis bound on |C(t_j) - D_j| (T/2 in a surface fit)
   CountSearch search = CountSearch::kFast;
+  int hint = 0;  ///< where kFast starts, the count kKnown takes; 0: degree + 1
 };
 
 /// The curve with the smallest count in [degree+1, N] whose fit keeps every point within

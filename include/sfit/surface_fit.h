@@ -22,6 +22,11 @@ struct FitOptions {
   bool closed_u = false;            ///< rows are closed contours (first point not repeated)
   bool closed_v = false;            ///< the sequence of rows is closed
   CountSearch search = CountSearch::kFast;
+  /// Counts to start the searches from, e.g. a previous fit's report.row_counts and
+  /// column_counts (used where their size matches the rows, the columns); kKnown takes them
+  /// as the answer. Without them kFast starts each row from the previous row's count, in
+  /// fixed blocks of 16 rows (so the result does not depend on the thread count).
+  std::vector<int> row_count_hints, column_count_hints;
   int threads = 0;  ///< 0: all cores; results are identical for any count
   /// Called between stages: (stage name, items done, items in the stage).
   std::function<void(std::string_view, std::size_t, std::size_t)> progress;

@@ -10,43 +10,73 @@
 
 namespace sfit {
 
-CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count) {
+namespace {
+
+// Reusable buffers of one thread's curve fits (no allocation per solve in a search).
+struct Workspace {
+  std::vector<double> t, basis;
+  std::vector<int> first;
+  std::vector<Point> control;
+};
+thread_local Workspace tls;
+
+// Least squares with `count` control points at the paper's parameters into ws.control.
+// With `bound`, returns early (false) at the first point out of it; otherwise computes
+// max_dev over all points and returns true.
+bool solve_count(std::span<const Point> points, int degree, bool periodic, int count,
+                 const Point* bound, Workspace& ws, Point& max_dev) {
   const int n_points = static_cast<int>(points.size());
-  CurveFit fit;
-  fit.curve.degree = degree;
-  fit.curve.periodic = periodic;
-  fit.parameters = paper_parameters(degree, count, periodic, n_points);
-  fit.solves = 1;
   const int w = degree + 1;
-  std::vector<double> basis(static_cast<std::size_t>(n_points) * w);
-  std::vector<int> first(static_cast<std::size_t>(n_points));
+  ws.t = paper_parameters(degree, count, periodic, n_points);
+  ws.basis.resize(static_cast<std::size_t>(n_points) * w);
+  ws.first.resize(static_cast<std::size_t>(n_points));
   detail::BandedLeastSquares lsq(count, w, periodic);
   for (int j = 0; j < n_points; ++j) {
-    double* b = &basis[static_cast<std::size_t>(j) * w];
-    first[j] = eval_basis(degree, count, periodic, fit.parameters[j], b);
-    lsq.add(first[j], b, points[j]);
+    double* b = &ws.basis[static_cast<std::size_t>(j) * w];
+    ws.first[j] = eval_basis(degree, count, periodic, ws.t[j], b);
+    lsq.add(ws.first[j], b, points[j]);
   }
-  if (!lsq.solve(fit.curve.control))
+  if (!lsq.solve(ws.control))
     throw Error(
         ErrorCode::kInternal, "singular least-squares system in the curve stage", Place{},
         {static_cast<double>(degree), static_cast<double>(count), static_cast<double>(n_points)});
-  const auto& P = fit.curve.control;
+  max_dev.setZero();
+  const auto& P = ws.control;
   for (int j = 0; j < n_points; ++j) {
-    const double* b = &basis[static_cast<std::size_t>(j) * w];
+    const double* b = &ws.basis[static_cast<std::size_t>(j) * w];
+    const int f = ws.first[j];
     Point c = Point::Zero();
-    for (int i = 0; i < w; ++i) c += b[i] * P[(first[j] + i) % count];
-    fit.max_deviation = fit.max_deviation.cwiseMax((c - points[j]).cwiseAbs());
+    if (f + w <= count) {
+      for (int i = 0; i < w; ++i) c += b[i] * P[f + i];
+    } else {
+      for (int i = 0; i < w; ++i) c += b[i] * P[(f + i) % count];
+    }
+    const Point d = (c - points[j]).cwiseAbs();
+    if (bound && !(d.array() <= bound->array()).all()) return false;
+    max_dev = max_dev.cwiseMax(d);
   }
-  return fit;
+  return true;
 }
 
-namespace {
-
-bool holds(const CurveFit& f, const Point& bound) {
-  return (f.max_deviation.array() <= bound.array()).all();
+CurveFit from_workspace(const Workspace& ws, int degree, bool periodic, const Point& max_dev) {
+  CurveFit f;
+  f.curve.degree = degree;
+  f.curve.periodic = periodic;
+  f.curve.control = ws.control;
+  f.parameters = ws.t;
+  f.max_deviation = max_dev;
+  return f;
 }
 
 }  // namespace
+
+CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count) {
+  Point dev;
+  solve_count(points, degree, periodic, count, nullptr, tls, dev);
+  CurveFit f = from_workspace(tls, degree, periodic, dev);
+  f.solves = 1;
+  return f;
+}
 
 CurveFit fit_curve(std::span<const Point> points, const CurveFitOptions& o) {
   const int n = static_cast<int>(points.size());
@@ -66,70 +96,65 @@ CurveFit fit_curve(std::span<const Point> points, const CurveFitOptions& o) {
     return f;
   }
   const int lo = o.degree + 1;
+  Workspace& ws = tls;
   int solves = 0;
-  auto try_count = [&](int count) {
-    CurveFit f = fit_curve_with_count(points, o.degree, o.periodic, count);
+  CurveFit best;
+  // Does `count` hold? Keeps the fit when it does. The interpolant (count n) always holds.
+  auto holds = [&](int count) {
+    Point dev;
     ++solves;
-    return f;
+    const bool ok =
+        solve_count(points, o.degree, o.periodic, count, count == n ? nullptr : &o.bound, ws, dev);
+    if (ok) best = from_workspace(ws, o.degree, o.periodic, dev);
+    return ok;
   };
-  auto finish = [&](CurveFit f) {
-    f.solves = solves;
-    return f;
+  auto finish = [&]() {
+    best.solves = solves;
+    return std::move(best);
   };
   if (o.search == CountSearch::kLinear) {
-    for (int c = lo; c < n; ++c) {
-      CurveFit f = try_count(c);
-      if (holds(f, o.bound)) return finish(std::move(f));
-    }
-    return finish(try_count(n));
+    for (int c = lo;; ++c)
+      if (holds(c)) return finish();
   }
-  // Fast: gallop upward from lo, then bisect between the last failing and first holding count.
-  CurveFit best = try_count(lo);
-  if (holds(best, o.bound)) return finish(std::move(best));
-  int bad = lo, step = 1;
-  int good = -1;
-  while (true) {
-    const int c = std::min(n, lo + step);
-    if (c == n) {
-      good = n;
-      best = try_count(n);
-      break;
-    }
-    CurveFit f = try_count(c);
-    if (holds(f, o.bound)) {
-      good = c;
-      best = std::move(f);
-      break;
-    }
-    bad = c;
-    step *= 2;
+  const int start = o.hint > 0 ? std::clamp(o.hint, lo, n) : lo;
+  bool start_holds;
+  if (o.search == CountSearch::kKnown && o.hint > 0) {
+    start_holds = holds(start);
+    if (start_holds) return finish();
+  } else {
+    start_holds = holds(start);
   }
-  auto bisect = [&](int bad_count, int good_count) {
-    while (good_count - bad_count > 1) {
-      const int mid = bad_count + (good_count - bad_count) / 2;
-      CurveFit f = try_count(mid);
-      if (holds(f, o.bound)) {
-        good_count = mid;
-        best = std::move(f);
+  // Bisect between a count that fails (bad) and one that holds (good; best has its fit).
+  auto bisect = [&](int bad, int good) {
+    while (good - bad > 1) {
+      const int mid = bad + (good - bad) / 2;
+      if (holds(mid)) {
+        good = mid;
       } else {
-        bad_count = mid;
+        bad = mid;
       }
     }
-    return good_count;
+    // best holds the fit of the last count that held, which is `good`.
+    if (best.curve.count() != good) holds(good);
+    return finish();
   };
-  good = bisect(bad, good);
-  // Feasibility is not strictly monotone in the count: look a few counts further down so the
-  // result agrees with the paper's linear search where a lower count also holds.
-  constexpr int kDownwardCheck = 3;
-  for (int c = good - 2; c >= std::max(lo + 1, good - 1 - kDownwardCheck); --c) {
-    CurveFit f = try_count(c);
-    if (holds(f, o.bound)) {
-      best = std::move(f);
-      good = bisect(lo, c);
-      c = good - 1;  // continue below the new answer
+  if (start_holds) {
+    // Gallop down: start-1, start-2, start-4, ... until one fails.
+    int good = start;
+    for (int step = 1; good > lo; step *= 2) {
+      const int c = std::max(lo, good - step);
+      if (!holds(c)) return bisect(c, good);
+      good = c;
     }
+    return finish();
   }
-  return finish(std::move(best));
+  // Gallop up: start+1, start+2, start+4, ... until one holds (n always does).
+  int bad = start;
+  for (int step = 1;; step *= 2) {
+    const int c = std::min(n, bad + step);
+    if (holds(c)) return bisect(bad, c);
+    bad = c;
+  }
 }
 
 }  // namespace sfit

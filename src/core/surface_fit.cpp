@@ -126,12 +126,23 @@ struct StageResult {
 template <class GetPoints>
 StageResult run_stage(std::size_t n_curves, GetPoints&& points_of, int degree, bool periodic,
                       const Point& bound, CountSearch search, int threads, bool shared_params,
-                      std::size_t max_points) {
+                      std::size_t max_points, const std::vector<int>& hints) {
   StageResult st;
   std::vector<CurveFit> fits(n_curves);
-  CurveFitOptions co{degree, periodic, bound, search};
-  detail::parallel_for(n_curves, threads,
-                       [&](std::size_t i) { fits[i] = fit_curve(points_of(i), co); });
+  // Fixed blocks of consecutive curves, each block in order: a curve's search starts from
+  // its predecessor's count (neighbouring rows need similar counts). The blocks do not
+  // depend on the thread count, so neither do the results.
+  constexpr std::size_t kBlock = 16;
+  const bool have_hints = hints.size() == n_curves;
+  const std::size_t n_blocks = (n_curves + kBlock - 1) / kBlock;
+  detail::parallel_for(n_blocks, threads, [&](std::size_t b) {
+    int previous = 0;
+    for (std::size_t i = b * kBlock; i < std::min(n_curves, (b + 1) * kBlock); ++i) {
+      CurveFitOptions co{degree, periodic, bound, search, have_hints ? hints[i] : previous};
+      fits[i] = fit_curve(points_of(i), co);
+      previous = fits[i].curve.degree == degree ? fits[i].curve.count() : previous;
+    }
+  });
   st.counts.resize(n_curves);
   int common = degree + 1;
   for (std::size_t i = 0; i < n_curves; ++i) {
@@ -180,7 +191,7 @@ Attempt fit_once(const Rows& rows, const FitOptions& o, const Point& bound, int 
   report("rows", 0, M);
   StageResult rs = run_stage(
       M, [&](std::size_t j) { return rows[j]; }, o.degree_u, o.closed_u, bound, o.search, threads,
-      false, longest);
+      false, longest, o.row_count_hints);
   report("rows", M, M);
   const int nu = rs.common;
 
@@ -193,7 +204,7 @@ Attempt fit_once(const Rows& rows, const FitOptions& o, const Point& bound, int 
   StageResult cs = run_stage(
       static_cast<std::size_t>(nu),
       [&](std::size_t i) { return std::span<const Point>(columns.data() + i * M, M); }, o.degree_v,
-      o.closed_v, bound, o.search, threads, true, M);
+      o.closed_v, bound, o.search, threads, true, M, o.column_count_hints);
   report("columns", static_cast<std::size_t>(nu), static_cast<std::size_t>(nu));
   const int nv = cs.common;
 
