@@ -230,7 +230,9 @@ TEST_P(BadInput, GivesItsExitCodeAndLineAndLosesNothing) {
       // Nothing written, nothing left behind, an existing output untouched.
       EXPECT_EQ(files_under(p.dir), before);
       for (const auto& o : output_paths(p.args)) {
-        if (run == 1 && before.count(o)) EXPECT_EQ(read_file(o), kOld) << o;
+        if (run == 1 && before.count(o)) {
+          EXPECT_EQ(read_file(o), kOld) << o;
+        }
       }
     } else {
       EXPECT_TRUE(errors.empty()) << stderr_text;
