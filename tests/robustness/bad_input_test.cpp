@@ -120,7 +120,7 @@ struct Prepared {
 
 // Builds the scratch folder of one run and expands the placeholders of `c`:
 // {in} the input, {tmp} the scratch folder, {out} = {tmp}/out.json, {ro} a folder that is
-// not writable, {file} a regular file (for "not a folder").
+// not writable, {file} a regular file (for "not a folder"), {folder} a folder "folder.json".
 Prepared prepare(const Case& c, const std::string& dir, bool with_old_outputs) {
   Prepared p;
   p.dir = dir;
@@ -166,11 +166,13 @@ Prepared prepare(const Case& c, const std::string& dir, bool with_old_outputs) {
   }
   const std::string ro = dir + "/ro";
   fs::create_directories(ro);
+  fs::create_directories(dir + "/folder.json");
   auto expand = [&](std::string s) {
     replace_all(s, "{in}", in);
     replace_all(s, "{out}", dir + "/out.json");
     replace_all(s, "{ro}", ro);
     replace_all(s, "{file}", dir + "/file");
+    replace_all(s, "{folder}", dir + "/folder.json");
     replace_all(s, "{tmp}", dir);
     return s;
   };
