@@ -35,15 +35,15 @@ struct VtkFields {
   const Rows* rows = nullptr;
 };
 
-/// Legacy VTK (ASCII) POLYDATA: the sampled grid as quads (POLYGONS), normals as point data;
-/// with fields.curvature, mean and Gaussian curvature; with a fit and its rows, the data
-/// points as VERTICES with point data "deviation" (S(u,v) - D, a vector) and
+/// Legacy VTK (binary: ASCII VTK cannot carry NaN) POLYDATA: the sampled grid as quads (POLYGONS),
+/// normals as point data; with fields.curvature, mean and Gaussian curvature; with a fit and its
+/// rows, the data points as VERTICES with point data "deviation" (S(u,v) - D, a vector) and
 /// "deviation_ratio" (max over axes |S - D| / T), NaN on the grid points, where those are not
 /// defined, and the grid points' curvature evaluated at each data point's (u, v).
 void write_vtk(const std::string& path, const Surface& surface, const Mesh& mesh,
                const VtkFields& fields);
 
-/// VTK XML StructuredGrid (.vts, ASCII): the sample grid with its normals, and with
+/// VTK XML StructuredGrid (.vts, inline base64 binary): the sample grid with its normals, and with
 /// fields.curvature its mean and Gaussian curvature. A structured grid holds no scattered
 /// points: the deviation at the data points is in the .vtk writer only. A periodic direction
 /// repeats its first sample at the end so the grid closes in ParaView.

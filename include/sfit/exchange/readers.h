@@ -19,15 +19,16 @@ struct SectionsFile {
   std::string name;
 };
 
-/// Samples per unit of the curve's length are chosen so that the chord between consecutive
-/// samples deviates from the curve by at most this fraction of the bounding-box diagonal of
-/// all curves (and at least kMinSectionSamples per curve).
+/// Each curve gets as many samples as a chordal deflection of kSectionDeflection times the
+/// bounding-box diagonal of all curves needs (GCPnts_QuasiUniformDeflection), at least
+/// kMinSectionSamples, placed uniformly in arc length (GCPnts_QuasiUniformAbscissa), so the
+/// fit's chord-length parameters stay even.
 inline constexpr double kSectionDeflection = 1e-5;
 inline constexpr int kMinSectionSamples = 50;
 
 /// Reads every curve of a STEP or IGES file that is not the boundary of a face (edges of
-/// wires and free edges, in file order) and samples each densely into one row
-/// (GCPnts_QuasiUniformDeflection). A closed curve (end = start) is a closed contour: its
+/// wires and free edges, in file order) and samples each densely into one row (see
+/// kSectionDeflection). A closed curve (end = start) is a closed contour: its
 /// last sample, equal to the first, is dropped, as in the .rows format; fit it with
 /// --closed u.
 /// Throws Error: kInputUnreadable (missing, a directory, unreadable), kInputSyntax (not a
