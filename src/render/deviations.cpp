@@ -44,30 +44,42 @@ double wrap_or_clamp(double t, double end, bool periodic) {
   return std::clamp(t, 0.0, end);
 }
 
+// Newton's method on f(u, v) = |S(u, v) - q|^2 / 2 with a backtracking line search. An open
+// direction at its end whose gradient points out of the domain is held there (projected
+// Newton), so points beyond an edge converge onto it.
 ClosestPoint refine(const Surface& s, const Point& q, double u, double v) {
   const double ue = s.u_end(), ve = s.v_end();
   Point d[6];
   s.derivatives(u, v, d);
   double f = (d[0] - q).squaredNorm();
-  for (int it = 0; it < 30; ++it) {
+  for (int it = 0; it < 40; ++it) {
     const Point r = d[0] - q;
     const Eigen::Vector2d g(d[1].dot(r), d[2].dot(r));
     Eigen::Matrix2d h;
     h << d[1].dot(d[1]) + d[3].dot(r), d[1].dot(d[2]) + d[4].dot(r), d[1].dot(d[2]) + d[4].dot(r),
         d[2].dot(d[2]) + d[5].dot(r);
-    if (!(h(0, 0) > 0 && h.determinant() > 0)) {  // not convex here: Gauss-Newton
+    if (!(h(0, 0) > 0 && h(1, 1) > 0 && h.determinant() > 0)) {  // not convex here: Gauss-Newton
       h << d[1].dot(d[1]), d[1].dot(d[2]), d[1].dot(d[2]), d[2].dot(d[2]);
       h.diagonal().array() += 1e-12 * (h.trace() + 1e-300);
     }
-    Eigen::Vector2d step = -h.ldlt().solve(g);
+    const bool hold_u = !s.periodic_u && ((u <= 0 && g.x() > 0) || (u >= ue && g.x() < 0));
+    const bool hold_v = !s.periodic_v && ((v <= 0 && g.y() > 0) || (v >= ve && g.y() < 0));
+    Eigen::Vector2d step;
+    if (hold_u && hold_v) break;
+    if (hold_u)
+      step = {0, -g.y() / h(1, 1)};
+    else if (hold_v)
+      step = {-g.x() / h(0, 0), 0};
+    else
+      step = -h.ldlt().solve(g);
     if (!step.allFinite()) break;
     bool moved = false;
-    for (int k = 0; k < 12; ++k, step *= 0.5) {
+    for (int k = 0; k < 20; ++k, step *= 0.5) {
       const double nu = wrap_or_clamp(u + step.x(), ue, s.periodic_u);
       const double nv = wrap_or_clamp(v + step.y(), ve, s.periodic_v);
       const double nf = (s.evaluate(nu, nv) - q).squaredNorm();
       if (nf < f) {
-        moved = std::abs(nu - u) > 1e-13 * (1 + ue) || std::abs(nv - v) > 1e-13 * (1 + ve);
+        moved = std::abs(nu - u) > 1e-14 * (1 + ue) || std::abs(nv - v) > 1e-14 * (1 + ve);
         u = nu;
         v = nv;
         f = nf;
@@ -84,9 +96,29 @@ ClosestPoint refine(const Surface& s, const Point& q, double u, double v) {
 
 std::vector<ClosestPoint> closest_points(const Surface& s, std::span<const Point> points) {
   if (points.empty()) return {};
+  constexpr std::size_t kStarts = 6;
   const double ue = s.u_end(), ve = s.v_end();
-  const int gu = std::clamp(4 * static_cast<int>(std::ceil(ue)), 16, 2000);
-  const int gv = std::clamp(4 * static_cast<int>(std::ceil(ve)), 16, 2000);
+  // Samples about evenly spaced on the surface (the control polygons' lengths tell how long
+  // it is each way), some 250,000 of them, and at least 4 a knot span.
+  double len_u = 0, len_v = 0;
+  for (int j = 0; j < s.count_v; ++j) {
+    double l = 0;
+    for (int i = 0; i + 1 < s.full_count_u(); ++i)
+      l += (s.full_at(i + 1, j) - s.full_at(i, j)).norm();
+    len_u = std::max(len_u, l);
+  }
+  for (int i = 0; i < s.count_u; ++i) {
+    double l = 0;
+    for (int j = 0; j + 1 < s.full_count_v(); ++j)
+      l += (s.full_at(i, j + 1) - s.full_at(i, j)).norm();
+    len_v = std::max(len_v, l);
+  }
+  const double h = std::sqrt(std::max(len_u * len_v, 1e-300) / 250000.0);
+  auto count = [h](double len, double end) {
+    const double by_length = len > 0 && h > 0 ? len / h : 0;
+    return static_cast<int>(std::clamp(std::max(by_length, 4 * std::ceil(end)), 16.0, 4000.0));
+  };
+  const int gu = count(len_u, ue), gv = count(len_v, ve);
   std::vector<Point> samples;
   std::vector<std::pair<double, double>> params;
   samples.reserve(static_cast<std::size_t>(gu + 1) * (gv + 1));
@@ -98,9 +130,14 @@ std::vector<ClosestPoint> closest_points(const Surface& s, std::span<const Point
     }
   const detail::NearestPoint grid(std::move(samples));
   std::vector<ClosestPoint> out(points.size());
+  // Several starts: on a thin part (a trailing edge) the nearest sample may lie on the far side.
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const auto [u0, v0] = params[grid.nearest(points[k])];
-    out[k] = refine(s, points[k], u0, v0);
+    bool first = true;
+    for (std::size_t i : grid.k_nearest(points[k], kStarts)) {
+      const ClosestPoint c = refine(s, points[k], params[i].first, params[i].second);
+      if (first || c.deviation.squaredNorm() < out[k].deviation.squaredNorm()) out[k] = c;
+      first = false;
+    }
   }
   return out;
 }

@@ -41,13 +41,15 @@ class NearestPoint {
   }
 
   /// Index of the point nearest q (the first of equals). The set must not be empty.
-  std::size_t nearest(const Point& q) const {
+  std::size_t nearest(const Point& q) const { return k_nearest(q, 1).front(); }
+
+  /// Indices of the k points nearest q, nearest first (fewer if the set is smaller).
+  std::vector<std::size_t> k_nearest(const Point& q, std::size_t k) const {
+    k = std::min(k, samples_.size());
+    std::vector<std::pair<double, std::size_t>> best;  // max-heap on distance, at most k
     const Cell c = cell_of(q);
-    double best = INFINITY;
-    std::size_t best_i = 0;
     for (long r = 0;; ++r) {
-      // Shell r: cells at Chebyshev distance r from c. Everything outside shell r is farther
-      // than r * cell_ from q (q lies inside cell c, clamped cells aside).
+      // Shell r: cells at Chebyshev distance r from c.
       for (long x = c[0] - r; x <= c[0] + r; ++x)
         for (long y = c[1] - r; y <= c[1] + r; ++y)
           for (long z = c[2] - r; z <= c[2] + r; ++z) {
@@ -58,17 +60,25 @@ class NearestPoint {
             if (it == buckets_.end()) continue;
             for (std::size_t i : it->second) {
               const double d = (samples_[i] - q).squaredNorm();
-              if (d < best) {
-                best = d;
-                best_i = i;
+              if (best.size() < k) {
+                best.emplace_back(d, i);
+                std::push_heap(best.begin(), best.end());
+              } else if (d < best.front().first) {
+                std::pop_heap(best.begin(), best.end());
+                best.back() = {d, i};
+                std::push_heap(best.begin(), best.end());
               }
             }
           }
       // Unvisited cells are at least r cells from q's (clamped) cell; a q outside the box is
       // farther still (Pythagoras with its projection onto the box).
       const double reach2 = (r * cell_) * (r * cell_) + outside2(q);
-      if (best <= reach2 || r > n_.maxCoeff()) return best_i;
+      if ((best.size() == k && best.front().first <= reach2) || r > n_.maxCoeff()) break;
     }
+    std::sort_heap(best.begin(), best.end());
+    std::vector<std::size_t> out;
+    for (const auto& b : best) out.push_back(b.second);
+    return out;
   }
 
  private:

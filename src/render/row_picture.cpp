@@ -205,8 +205,7 @@ RowPicture render_row(std::span<const Point> points, bool closed, const CurveFit
       const int ix0 = x1 - iw - 4, iy0 = y1 - ih - 4;
       blit(img, draw_projection(d, iw, ih, p.axis_a, p.axis_b, iox, ioy, is, SS), ix0, iy0);
       frame(img, ix0, iy0, ix0 + iw, iy0 + ih, {90, 90, 90});
-      detail::draw_text(img, ix0 + 4, iy0 + lh,
-                        "\xC3\x97" + fmt_g(is / p.scale, 2) + " at the worst point", kInk);
+      detail::draw_text(img, ix0 + 4, iy0 + lh, "\xC3\x97" + fmt_g(is / p.scale, 2), kInk);
     }
   }
 

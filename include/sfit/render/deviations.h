@@ -22,9 +22,10 @@ struct ClosestPoint {
   Point deviation = Point::Zero();  ///< S(u, v) - D
 };
 
-/// For each point, the nearest point of the surface: the nearest sample of a grid of at least
-/// 4 samples per knot span (found through a bucket grid), then Newton's method on
-/// |S(u,v) - D|^2 with a line search, clamped to the domain (wrapped where periodic).
+/// For each point, the nearest point of the surface: from each of the 6 nearest samples of a
+/// grid of 4 samples per knot span (found through a bucket grid), Newton's method on
+/// |S(u,v) - D|^2 with a line search, held to the domain (wrapped where periodic); the best
+/// result wins. Several starts keep a point near a thin edge on its own side.
 /// |deviation| is never more than the distance at the assigned parameters, so the per-axis
 /// values are a lower bound of what the fit report measured in the usual case.
 std::vector<ClosestPoint> closest_points(const Surface& surface, std::span<const Point> points);

@@ -1,0 +1,433 @@
+// The surface pictures, checked by what they show: curvature colours of known shapes, the
+// straightness of a plane's highlight stripes, the deviation colours against the fit report,
+// closed surfaces without a seam, and the overlays.
+#include "sfit/render/surface_picture.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "picture_checks.h"
+#include "sfit/error.h"
+#include "sfit/render/colormap.h"
+#include "sfit/render/deviations.h"
+#include "sfit/surface_fit.h"
+#include "test_support.h"
+
+namespace sfit::test {
+namespace {
+
+using render::Mode;
+using render::Rgb;
+constexpr double kPi = std::numbers::pi;
+
+FitResult fit(const Rows& rows, double tol, bool closed_u = false, bool closed_v = false) {
+  FitOptions o;
+  o.tolerance = Point::Constant(tol);
+  o.closed_u = closed_u;
+  o.closed_v = closed_v;
+  return fit_surface(rows, o);
+}
+
+// A patch of the sphere of radius R: polar angle 35 ... 80 degrees, azimuth 0 ... 70 degrees,
+// 41 x 41 points. (The fit's clamped ends bend the curvature within about two knot spans of
+// the patch's edges, which the picture shows; the checks look at the inside.)
+constexpr double kRadius = 2.0;
+Rows sphere_patch() {
+  return sample_rows(
+      [](double s, double t) {
+        const double th = (35 + 45 * t) * kPi / 180, ph = 70 * s * kPi / 180;
+        return Point(kRadius * std::sin(th) * std::cos(ph), kRadius * std::sin(th) * std::sin(ph),
+                     kRadius * std::cos(th));
+      },
+      std::vector<int>(41, 41));
+}
+
+// The view straight onto the patch's middle (azimuth 35 degrees, polar angle 57.5).
+render::View onto_sphere_patch() {
+  return {90 + 35, 90 - 57.5, 2};
+}
+
+TEST(SurfacePicture, SpherePatchGaussianCurvatureIsUniformAndPositive) {
+  const FitResult f = fit(sphere_patch(), 1e-6);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  render::RenderOptions o = small_options(Mode::kGauss);
+  o.view = onto_sphere_patch();
+  // K = 1/R^2 sits in the middle of the positive half of the scale: any change shows.
+  o.curvature_scale = 2.0 / (kRadius * kRadius);
+  const render::RenderResult r = render::render_surface(sc, o);
+  dump(r.image, "sphere_gauss");
+  const auto inside = interior_pixels(r, 28);
+  ASSERT_GT(inside.size(), 5000u);
+  // diverging(0.5) = (244, 154, 123) under a light that scales all channels alike.
+  const Rgb mid = render::diverging(0.5);
+  for (auto [x, y] : inside) {
+    const Rgb c = r.image.at(x, y);
+    ASSERT_GT(c.r, c.b + 40) << "not red (K > 0) at " << x << "," << y;
+    EXPECT_NEAR(double(c.g) / c.r, double(mid.g) / mid.r, 0.03) << x << "," << y;
+    EXPECT_NEAR(double(c.b) / c.r, double(mid.b) / mid.r, 0.03) << x << "," << y;
+  }
+}
+
+TEST(SurfacePicture, SpherePatchMeanCurvatureIsUniform) {
+  const FitResult f = fit(sphere_patch(), 1e-6);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  render::RenderOptions o = small_options(Mode::kMean);
+  o.view = onto_sphere_patch();
+  o.curvature_scale = 2 / kRadius;
+  const render::RenderResult r = render::render_surface(sc, o);
+  dump(r.image, "sphere_mean");
+  // |H| = 1/R: the middle of one half of the scale; the sign follows the normal S_u x S_v,
+  // here pointing into the sphere (H > 0, red).
+  EXPECT_GT(r.value_min * r.value_max, 0) << "one sign all over";
+  const auto inside = interior_pixels(r, 28);
+  ASSERT_GT(inside.size(), 5000u);
+  const Rgb mid = render::diverging(0.5);
+  for (auto [x, y] : inside) {
+    const Rgb c = r.image.at(x, y);
+    ASSERT_GT(c.r, c.b + 40) << x << "," << y;
+    EXPECT_NEAR(double(c.g) / c.r, double(mid.g) / mid.r, 0.03) << x << "," << y;
+    EXPECT_NEAR(double(c.b) / c.r, double(mid.b) / mid.r, 0.03) << x << "," << y;
+  }
+}
+
+TEST(SurfacePicture, SaddleGaussianCurvatureIsNegative) {
+  // z = (x^2 - y^2) / 2: K = -1 / (1 + x^2 + y^2)^2 < 0 everywhere.
+  const Rows rows = sample_rows(
+      [](double s, double t) {
+        const double x = s - 0.5, y = t - 0.5;
+        return Point(x, y, 0.5 * (x * x - y * y));
+      },
+      std::vector<int>(12, 12));
+  const FitResult f = fit(rows, 1e-6);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  render::RenderOptions o = small_options(Mode::kGauss);
+  o.view = {0, 90, 2};
+  const render::RenderResult r = render::render_surface(sc, o);
+  EXPECT_LT(r.value_max, 0);
+  EXPECT_NEAR(r.value_min, -1.0, 0.02);  // at the centre
+  const auto inside = interior_pixels(r);
+  ASSERT_GT(inside.size(), 5000u);
+  for (auto [x, y] : inside) {
+    const Rgb c = r.image.at(x, y);
+    ASSERT_GT(c.b, c.r + 20) << "not blue (K < 0) at " << x << "," << y;
+  }
+}
+
+// Fraction of pixel pairs (p, p + L d(theta)) inside the surface whose stripe colour agrees,
+// maximised over the direction theta: 1 for straight parallel stripes. Pixels on a stripe's
+// anti-aliased edge (neither dark nor light) are left out.
+double best_stripe_agreement(const render::RenderResult& r, double* best_theta) {
+  const render::Image& img = r.image;
+  std::vector<signed char> bin(static_cast<std::size_t>(img.width) * img.height, -1);
+  for (auto [x, y] : interior_pixels(r, 2)) {
+    const int gv = img.at(x, y).g;
+    if (gv < 60 || gv > 180) bin[y * img.width + x] = gv > 128 ? 1 : 0;
+  }
+  double best = 0;
+  const double L = 40;
+  for (int a = 0; a < 720; ++a) {
+    const double th = a * kPi / 720, dx = L * std::cos(th), dy = L * std::sin(th);
+    long same = 0, all = 0;
+    for (int y = 0; y < img.height; y += 2)
+      for (int x = 0; x < img.width; x += 2) {
+        const int x2 = static_cast<int>(std::lround(x + dx)),
+                  y2 = static_cast<int>(std::lround(y + dy));
+        if (x2 < 0 || y2 < 0 || x2 >= img.width || y2 >= img.height) continue;
+        const int b1 = bin[y * img.width + x], b2 = bin[y2 * img.width + x2];
+        if (b1 < 0 || b2 < 0) continue;
+        ++all;
+        same += b1 == b2;
+      }
+    if (all > 1000 && double(same) / all > best) {
+      best = double(same) / all;
+      *best_theta = th;
+    }
+  }
+  return best;
+}
+
+TEST(SurfacePicture, PlaneZebraStripesAreStraightAndParallel) {
+  const Rows rows = sample_rows([](double s, double t) { return Point(s, t, 0.3 * s + 0.2 * t); },
+                                std::vector<int>(6, 6));
+  const FitResult f = fit(rows, 1e-6);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  render::RenderOptions o = small_options(Mode::kZebra);
+  o.view = {30, 60, 2};
+  const render::RenderResult r = render::render_surface(sc, o);
+  dump(r.image, "plane_zebra");
+  double theta = 0;
+  const double agree = best_stripe_agreement(r, &theta);
+  EXPECT_GT(agree, 0.995) << "stripes are not straight and parallel";
+  RecordProperty("agreement", std::to_string(agree));
+  // Across the stripes: several of them, about evenly spaced (the highlight model's angle
+  // drifts slowly across the picture; widths are measured to the pixel).
+  const auto inside = interior_pixels(r, 2);
+  double cx = 0, cy = 0;
+  for (auto [x, y] : inside) cx += x, cy += y;
+  cx /= inside.size();
+  cy /= inside.size();
+  const double nx = -std::sin(theta), ny = std::cos(theta);
+  std::vector<double> edges;
+  int prev = -1;
+  for (double s = -400; s <= 400; s += 0.25) {
+    const int x = static_cast<int>(std::lround(cx + s * nx)),
+              y = static_cast<int>(std::lround(cy + s * ny));
+    if (!r.image.contains(x, y) || is_background(r.image.at(x, y))) continue;
+    const int b = r.image.at(x, y).g > 128;
+    if (prev >= 0 && b != prev) edges.push_back(s);
+    prev = b;
+  }
+  ASSERT_GE(edges.size(), 8u);
+  std::vector<double> widths;
+  for (std::size_t i = 2; i + 1 < edges.size(); ++i) widths.push_back(edges[i] - edges[i - 1]);
+  const auto [lo, hi] = std::minmax_element(widths.begin(), widths.end());
+  EXPECT_LT(*hi / *lo, 1.5) << "stripe widths vary too much";
+}
+
+TEST(SurfacePicture, CurvedZebraStripesAreNotStraight) {
+  // The same measure on a gently curved surface in the same view: the stripes bend, so the
+  // plane's result means something.
+  const Rows rows = sample_rows(
+      [](double s, double t) { return Point(s, t, 0.3 * s + 0.2 * t + 0.15 * (s * s - t * t)); },
+      std::vector<int>(9, 9));
+  const FitResult f = fit(rows, 1e-6);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  render::RenderOptions o = small_options(Mode::kZebra);
+  o.view = {30, 60, 2};
+  const render::RenderResult r = render::render_surface(sc, o);
+  dump(r.image, "saddle_zebra");
+  double theta = 0;
+  const double agree = best_stripe_agreement(r, &theta);
+  RecordProperty("agreement", std::to_string(agree));
+  EXPECT_LT(agree, 0.95);
+}
+
+double max_ratio_of_report(const FitReport& rep) {
+  double m = 0;
+  for (int a = 0; a < 3; ++a) m = std::max(m, rep.max_deviation[a] / rep.tolerance[a]);
+  return m;
+}
+
+TEST(SurfacePicture, DeviationColoursMatchTheReportsWorstPoint) {
+  const Rows rows = load_rows(example("ship_px121_stations.rows"));
+  const FitResult f = fit(rows, 0.2);
+  const std::vector<Point> d = render::deviations_at_parameters(f.surface, rows, f.u, f.v);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  sc.rows = &rows;
+  sc.deviations = d;
+  sc.tolerance = f.report.tolerance;
+  render::RenderOptions o = small_options(Mode::kDeviation);
+  o.view = {135, 25, 2};
+  const render::RenderResult r = render::render_surface(sc, o);
+  const double want = max_ratio_of_report(f.report);
+  ASSERT_GT(want, 0.3);
+  EXPECT_NEAR(r.worst_ratio, want, 1e-9);
+  const long worst = static_cast<long>(rows.offsets()[f.report.worst_row]) + f.report.worst_index;
+  EXPECT_EQ(r.worst_point, worst);
+  // The worst point's disc shows the report's ratio.
+  const Eigen::Vector3d p = r.camera.project(rows.points()[worst]);
+  double dist = 0;
+  const double t = decode_sequential(r.image.at(int(p.x()), int(p.y())), &dist);
+  EXPECT_LT(dist, 4.0);
+  EXPECT_NEAR(t, want, 0.02);
+  // No visible point shows more.
+  for (std::size_t k = 0; k < rows.total_points(); ++k) {
+    const Eigen::Vector3d q = r.camera.project(rows.points()[k]);
+    double dk = 0;
+    const double tk = decode_sequential(r.image.at(int(q.x()), int(q.y())), &dk);
+    if (dk < 4.0) {
+      EXPECT_LE(tk, want + 0.02) << "point " << k;
+    }
+  }
+  // The colour bar runs from sequential(0) at the bottom to sequential(1) = T at the top.
+  const int bx = (r.bar_x0 + r.bar_x1) / 2;
+  EXPECT_NEAR(decode_sequential(r.image.at(bx, r.bar_y0)), 1.0, 0.005);
+  EXPECT_NEAR(decode_sequential(r.image.at(bx, r.bar_y1 - 1)), 0.0, 0.005);
+}
+
+TEST(SurfacePicture, PointsBeyondTheToleranceAreMagenta) {
+  const Rows rows = load_rows(example("ship_px121_stations.rows"));
+  const FitResult f = fit(rows, 0.2);
+  std::vector<Point> d = render::deviations_at_parameters(f.surface, rows, f.u, f.v);
+  d[40] = Point(0, 0.5, 0);  // 2.5 T
+  render::Scene sc;
+  sc.surface = &f.surface;
+  sc.rows = &rows;
+  sc.deviations = d;
+  sc.tolerance = f.report.tolerance;
+  render::RenderOptions o = small_options(Mode::kDeviation);
+  const render::RenderResult r = render::render_surface(sc, o);
+  EXPECT_EQ(r.worst_point, 40);
+  EXPECT_NEAR(r.worst_ratio, 2.5, 1e-12);
+  const Eigen::Vector3d p = r.camera.project(rows.points()[40]);
+  EXPECT_EQ(r.image.at(int(p.x()), int(p.y())), render::kExceeded);
+}
+
+// Brightness of a pixel.
+double grey(Rgb c) {
+  return (c.r + c.g + c.b) / 3.0;
+}
+
+// A flat annulus 1 <= r <= 1.5 in z = 0, seen from above: nothing lies behind it, so a crack
+// anywhere, the seam included, would show the white background.
+long background_inside_annulus(const render::RenderResult& r) {
+  const Eigen::Vector3d c = r.camera.project(Point(0, 0, 0));
+  const double px = r.camera.scale;  // pixels per unit length
+  long gaps = 0;
+  for (int y = 0; y < r.image.height; ++y)
+    for (int x = 0; x < r.image.width; ++x) {
+      const double rho = std::hypot(x + 0.5 - c.x(), y + 0.5 - c.y()) / px;
+      if (rho > 1 + 2 / px && rho < 1.5 - 2 / px) gaps += is_background(r.image.at(x, y));
+    }
+  return gaps;
+}
+
+Point on_annulus(double angle, double radial) {
+  const double rho = 1 + 0.5 * radial;
+  return Point(rho * std::cos(angle), rho * std::sin(angle), 0);
+}
+
+TEST(SurfacePicture, ClosedRowsRenderWithoutASeamGap) {
+  // Rows are circles: closed in u, the seam along the positive x axis.
+  const Rows rows = sample_rows([](double s, double t) { return on_annulus(2 * kPi * s, t); },
+                                std::vector<int>(5, 24), true, false);
+  const FitResult f = fit(rows, 1e-4, true, false);
+  ASSERT_TRUE(f.surface.periodic_u);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  for (const Mode m : {Mode::kShaded, Mode::kZebra}) {
+    render::RenderOptions o = small_options(m);
+    o.view = {0, 90, 2};
+    EXPECT_EQ(background_inside_annulus(render::render_surface(sc, o)), 0) << render::to_string(m);
+  }
+}
+
+TEST(SurfacePicture, ClosedRowSequenceRendersWithoutASeamGap) {
+  // Rows are radial segments around the circle: closed in v.
+  const Rows rows = sample_rows([](double s, double t) { return on_annulus(2 * kPi * t, s); },
+                                std::vector<int>(24, 5), false, true);
+  const FitResult f = fit(rows, 1e-4, false, true);
+  ASSERT_TRUE(f.surface.periodic_v);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  render::RenderOptions o = small_options(Mode::kShaded);
+  o.view = {0, 90, 2};
+  EXPECT_EQ(background_inside_annulus(render::render_surface(sc, o)), 0);
+}
+
+TEST(SurfacePicture, ClosedCylinderShowsNoLineAtItsSeam) {
+  // Rows are circles starting at the point that faces the viewer (-y): the u seam runs down
+  // the middle of the picture; the exact normals make it invisible.
+  const Rows rows = sample_rows(
+      [](double s, double t) {
+        const double a = -kPi / 2 + 2 * kPi * s;
+        return Point(std::cos(a), std::sin(a), 2 * t);
+      },
+      std::vector<int>(5, 24), true, false);
+  const FitResult f = fit(rows, 1e-4, true, false);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  render::RenderOptions o = small_options(Mode::kShaded);
+  o.view = {0, 0, 2};
+  const render::RenderResult r = render::render_surface(sc, o);
+  const Eigen::Vector3d lo = r.camera.project(Point(-1, 0, 0)),
+                        hi = r.camera.project(Point(1, 0, 2));
+  const int sx = static_cast<int>(r.camera.project(Point(0, -1, 1)).x());
+  double worst = 0;
+  long gaps = 0;
+  for (int y = int(hi.y()) + 3; y <= int(lo.y()) - 3; ++y) {
+    for (int x = int(lo.x()) + 3; x <= int(hi.x()) - 3; ++x)
+      gaps += is_background(r.image.at(x, y));
+    const double here = grey(r.image.at(sx, y));
+    const double around = 0.5 * (grey(r.image.at(sx - 2, y)) + grey(r.image.at(sx + 2, y)));
+    worst = std::max(worst, std::abs(here - around));
+  }
+  EXPECT_EQ(gaps, 0);
+  EXPECT_LT(worst, 3.0) << "a line shows at the seam";
+}
+
+int count_pixels(const render::Image& img, bool (*pred)(Rgb)) {
+  int n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) n += pred(img.at(x, y));
+  return n;
+}
+
+TEST(SurfacePicture, OverlaysDrawTheNetPointsAndRows) {
+  const Rows rows = load_rows(example("ship_px121_stations.rows"));
+  const FitResult f = fit(rows, 0.2);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  sc.rows = &rows;
+  sc.row_v = f.v;
+  auto red = [](Rgb c) { return c.r > 150 && c.g < 90 && c.b < 90; };
+  auto dark = [](Rgb c) { return c.r < 60 && c.g < 60 && c.b < 60; };
+  auto blue = [](Rgb c) { return c.b > 100 && c.r < 80 && c.g < 110; };
+  render::RenderOptions o = small_options(Mode::kShaded);
+  o.view = {135, 25, 2};
+  const render::RenderResult plain = render::render_surface(sc, o);
+  o.net = true;
+  const render::RenderResult net = render::render_surface(sc, o);
+  o.net = false;
+  o.points = true;
+  const render::RenderResult pts = render::render_surface(sc, o);
+  o.points = false;
+  o.rows = true;
+  const render::RenderResult rws = render::render_surface(sc, o);
+  EXPECT_EQ(count_pixels(plain.image, red), 0);
+  EXPECT_GT(count_pixels(net.image, red), 300);
+  // Each control point is drawn (in full, or faint where the surface hides it).
+  int seen = 0;
+  for (const Point& c : f.surface.control) {
+    const Eigen::Vector3d q = net.camera.project(c);
+    const Rgb a = net.image.at(int(q.x()), int(q.y())), b = plain.image.at(int(q.x()), int(q.y()));
+    seen += a.r > a.g + 30 && !(a == b);
+  }
+  EXPECT_EQ(seen, static_cast<int>(f.surface.control.size()));
+  EXPECT_EQ(count_pixels(plain.image, dark), 0);
+  EXPECT_GT(count_pixels(pts.image, dark), 90);
+  EXPECT_EQ(count_pixels(plain.image, blue), 0);
+  EXPECT_GT(count_pixels(rws.image, blue), 400);
+}
+
+TEST(SurfacePicture, RejectsBadOptionsAndMissingData) {
+  const Rows rows = load_rows(example("ship_px121_stations.rows"));
+  const FitResult f = fit(rows, 0.2);
+  render::Scene sc;
+  sc.surface = &f.surface;
+  auto code_and_option = [&](render::RenderOptions o) {
+    try {
+      render::render_surface(sc, o);
+    } catch (const Error& e) {
+      return std::pair(e.code(), e.place().option);
+    }
+    return std::pair(ErrorCode::kInternal, std::string("no error"));
+  };
+  render::RenderOptions o = small_options(Mode::kShaded);
+  o.width = 10;
+  EXPECT_EQ(code_and_option(o), std::pair(ErrorCode::kUsage, std::string("width")));
+  o = small_options(Mode::kShaded);
+  o.exaggeration = 0;
+  EXPECT_EQ(code_and_option(o), std::pair(ErrorCode::kUsage, std::string("exaggeration")));
+  o = small_options(Mode::kDeviation);
+  EXPECT_EQ(code_and_option(o), std::pair(ErrorCode::kUsage, std::string("mode")));
+  o = small_options(Mode::kShaded);
+  o.points = true;
+  EXPECT_EQ(code_and_option(o), std::pair(ErrorCode::kUsage, std::string("points")));
+  EXPECT_THROW(render::parse_mode("wireframe", "--mode"), Error);
+  EXPECT_THROW(render::parse_view("45", 2, "--view"), Error);
+  EXPECT_THROW(render::parse_view("0,91", 2, "--view"), Error);
+  EXPECT_EQ(render::parse_view("10,-20", 1, "--view").elevation, -20);
+}
+
+}  // namespace
+}  // namespace sfit::test
