@@ -27,4 +27,11 @@ check 0 fit examples/ship_px121_stations.rows -q -o "$out/hull.json" --report "$
 check 0 fit examples/iea3p4mw_blade_ragged9.rows --closed u --tol 0.001 -q -o "$out/blade.json"
 check 0 convert "$out/hull.json" -q -o "$out/hull-copy.json"
 check 4 fit tests/bad_input/truncated_last_line.rows -q -o "$out/bad.json"
+# The optional writers, where this build has them: STEP (OpenCASCADE), STL, PNG (libpng).
+extra=()
+"$cli" convert "$out/hull.json" -q -o "$out/probe.step" 2>/dev/null && extra+=(-o "$out/hull.step" -o "$out/hull.stl")
+"$cli" fit --help 2>/dev/null | grep -q -- '--png' && extra+=(--png "$out/hull.png")
+if [ ${#extra[@]} -gt 0 ]; then
+  check 0 fit examples/ship_px121_stations.rows -q "${extra[@]}"
+fi
 echo "valgrind: $(($(date +%s) - start)) s"
