@@ -1,5 +1,6 @@
 #include "checker.h"
 
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomAdaptor_Surface.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <algorithm>
@@ -207,7 +208,7 @@ double newton(const GeomAdaptor_Surface& s, const Domain& d, const gp_Pnt& p, do
 }  // namespace
 
 CheckResult check_closest(const Handle(Geom_BSplineSurface) & surface, const Rows& rows,
-                          double tolerance, int threads) {
+                          double tolerance, int threads, std::vector<double>* distances) {
   const GeomAdaptor_Surface adaptor(surface);
   Domain dom;
   surface->Bounds(dom.u0, dom.u1, dom.v0, dom.v1);
@@ -230,6 +231,8 @@ CheckResult check_closest(const Handle(Geom_BSplineSurface) & surface, const Row
   const std::size_t m = rows.size();
   struct Partial {
     CheckResult r;
+    std::vector<std::size_t> index;  // point index in Rows::points()
+    std::vector<double> d;
   };
   threads = std::max(1, threads);
   std::vector<Partial> parts(threads);
@@ -257,13 +260,8 @@ CheckResult check_closest(const Handle(Geom_BSplineSurface) & surface, const Row
             }
           }
         }
-        ++r.points;
-        if (dist > tolerance) ++r.out_of_tolerance;
-        if (r.worst_row < 0 || dist > r.max_distance) {
-          r.max_distance = dist;
-          r.worst_row = static_cast<long>(j);
-          r.worst_index = static_cast<long>(k);
-        }
+        parts[t].index.push_back(rows.offsets()[j] + k);
+        parts[t].d.push_back(dist);
       }
     }
   };
@@ -272,19 +270,46 @@ CheckResult check_closest(const Handle(Geom_BSplineSurface) & surface, const Row
   work(0);
   for (auto& th : pool) th.join();
 
-  CheckResult out;
+  std::vector<double> dist(rows.total_points(), 0.0);
   for (const Partial& p : parts) {
-    out.points += p.r.points;
-    out.out_of_tolerance += p.r.out_of_tolerance;
-    out.global_searches += p.r.global_searches;
-    if (p.r.worst_row >= 0 &&
-        (out.worst_row < 0 || p.r.max_distance > out.max_distance ||
-         (p.r.max_distance == out.max_distance && p.r.worst_row < out.worst_row))) {
-      out.max_distance = p.r.max_distance;
-      out.worst_row = p.r.worst_row;
-      out.worst_index = p.r.worst_index;
-    }
+    for (std::size_t i = 0; i < p.d.size(); ++i) dist[p.index[i]] = p.d[i];
   }
+  CheckResult out;
+  out.points = dist.size();
+  for (const Partial& p : parts) out.global_searches += p.r.global_searches;
+
+  // OpenCASCADE's projection on the points that decide the counts and the maximum.
+  std::vector<std::size_t> order(dist.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return dist[a] > dist[b] || (dist[a] == dist[b] && a < b);
+  });
+  GeomAPI_ProjectPointOnSurf projector;
+  projector.Init(surface, dom.u0, dom.u1, dom.v0, dom.v1);
+  double refined_max = 0;
+  for (std::size_t i : order) {
+    if (dist[i] <= tolerance && dist[i] <= refined_max) break;
+    const Point& q = rows.points()[i];
+    projector.Perform(gp_Pnt(q.x(), q.y(), q.z()));
+    ++out.occt_projections;
+    if (projector.NbPoints() > 0 && projector.LowerDistance() < dist[i]) {
+      dist[i] = projector.LowerDistance();
+      ++out.occt_closer;
+    }
+    refined_max = std::max(refined_max, dist[i]);
+  }
+
+  const auto& off = rows.offsets();
+  for (std::size_t j = 0; j < rows.size(); ++j)
+    for (std::size_t k = off[j]; k < off[j + 1]; ++k) {
+      if (dist[k] > tolerance) ++out.out_of_tolerance;
+      if (out.worst_row < 0 || dist[k] > out.max_distance) {
+        out.max_distance = dist[k];
+        out.worst_row = static_cast<long>(j);
+        out.worst_index = static_cast<long>(k - off[j]);
+      }
+    }
+  if (distances) *distances = std::move(dist);
   return out;
 }
 

@@ -4,11 +4,15 @@
 //   sfit_peers fit   --peer sfit|sfit-mt|occt-grid|occt-loft|sisl-grid --data F.rows --tol T
 //                    [--closed-u] [--repeats R] [--budget SECONDS] [--check-threads N]
 //   sfit_peers check --surface S.json --data F.rows --tol T [--check-threads N]
+//   sfit_peers crosscheck --peer P --data F.rows --tol T [--closed-u] [--stride K]
 //
 // fit times only the tool's fitting call (input conversion and the check are outside), runs it
 // up to R times while the total stays under the budget (at least once), and reports the median.
 // check reads a surface written by another program (scipy_peer.py) and runs the same checker.
+// crosscheck fits once and compares the checker's distance with OpenCASCADE's own
+// GeomAPI_ProjectPointOnSurf on every K-th point (a test of the checker, not of the tool).
 // bench/peers/run_peers.py drives it; see the README section "Against other tools".
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Standard_Failure.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
@@ -64,9 +68,14 @@ std::string get(const std::map<std::string, std::string>& o, const std::string& 
 json check_json(const Handle(Geom_BSplineSurface) & s, const sfit::Rows& rows, double tol,
                 int threads) {
   const auto c = sfit::peers::check_closest(s, rows, tol, threads);
-  return {{"max_distance", c.max_distance}, {"out_of_tolerance", c.out_of_tolerance},
-          {"checked_points", c.points},     {"worst_row", c.worst_row},
-          {"worst_index", c.worst_index},   {"global_searches", c.global_searches}};
+  return {{"max_distance", c.max_distance},
+          {"out_of_tolerance", c.out_of_tolerance},
+          {"checked_points", c.points},
+          {"worst_row", c.worst_row},
+          {"worst_index", c.worst_index},
+          {"global_searches", c.global_searches},
+          {"occt_projections", c.occt_projections},
+          {"occt_closer", c.occt_closer}};
 }
 
 // A surface in the neutral form scipy_peer.py writes: degrees, full (clamped) knot vectors,
@@ -133,7 +142,7 @@ int run(int argc, char** argv) {
   } else if (cmd == "check") {
     const double tol = std::stod(need(o, "--tol"));
     out["check"] = check_json(read_surface(need(o, "--surface")), rows, tol, check_threads);
-  } else if (cmd == "fit") {
+  } else if (cmd == "fit" || cmd == "crosscheck") {
     const std::string name = need(o, "--peer");
     const double tol = std::stod(need(o, "--tol"));
     const bool closed_u = o.count("--closed-u") > 0;
@@ -157,6 +166,42 @@ int run(int argc, char** argv) {
     }
     out["peer"] = name;
     out["tolerance"] = tol;
+    if (cmd == "crosscheck") {
+      peer->fit();
+      const Handle(Geom_BSplineSurface) s = peer->surface();
+      std::vector<double> mine;
+      sfit::peers::check_closest(s, rows, tol, check_threads, &mine);
+      const std::size_t stride = std::stoul(get(o, "--stride", "1"));
+      double u0, u1, v0, v1;
+      s->Bounds(u0, u1, v0, v1);
+      GeomAPI_ProjectPointOnSurf projector;
+      projector.Init(s, u0, u1, v0, v1);
+      std::size_t compared = 0, occt_none = 0, mine_worse = 0, occt_worse = 0;
+      double worst_mine = 0, worst_occt = 0;
+      const double eps = 1e-9 * sfit::bounding_box(rows).diagonal();
+      for (std::size_t i = 0; i < mine.size(); i += stride) {
+        const sfit::Point& p = rows.points()[i];
+        projector.Perform(gp_Pnt(p.x(), p.y(), p.z()));
+        ++compared;
+        if (projector.NbPoints() == 0) {
+          ++occt_none;
+          continue;
+        }
+        const double d = projector.LowerDistance();
+        if (mine[i] > d + eps) ++mine_worse;
+        if (d > mine[i] + eps) ++occt_worse;
+        worst_mine = std::max(worst_mine, mine[i] - d);
+        worst_occt = std::max(worst_occt, d - mine[i]);
+      }
+      out["compared"] = compared;
+      out["occt_found_nothing"] = occt_none;
+      out["checker_farther"] = mine_worse;
+      out["checker_farther_max"] = worst_mine;
+      out["occt_farther"] = occt_worse;
+      out["occt_farther_max"] = worst_occt;
+      std::cout << out.dump() << "\n";
+      return 0;
+    }
     std::vector<double> times;
     double total = 0;
     while (times.empty() || (static_cast<int>(times.size()) < repeats && total < budget)) {

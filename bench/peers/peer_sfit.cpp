@@ -2,6 +2,7 @@
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 
@@ -61,9 +62,14 @@ class SfitPeer final : public Peer {
   }
   std::string notes() const override {
     const FitReport& r = result_->report;
-    const double worst = r.max_deviation.maxCoeff();
-    return "own check: max per-axis deviation " + std::to_string(worst) +
-           (r.within_tolerance ? " <= T" : " > T");
+    return "own check: max per-axis deviation " + std::to_string(r.max_deviation.maxCoeff()) +
+           (r.within_tolerance ? " <= T" : " > T") + "; max row count " +
+           std::to_string(*std::max_element(r.row_counts.begin(), r.row_counts.end())) +
+           ", max column count " +
+           std::to_string(*std::max_element(r.column_counts.begin(), r.column_counts.end())) +
+           ", raised " + std::to_string(r.raised_u) + "/" + std::to_string(r.raised_v) +
+           ", tightenings " + std::to_string(r.tightenings) + ", solves " +
+           std::to_string(r.solves);
   }
 
  private:

@@ -114,6 +114,7 @@ def main():
     ap.add_argument("--python", default=sys.executable)
     ap.add_argument("--max-points", type=float, default=1e7)
     ap.add_argument("--cap", type=float, default=60.0, help="skip a fit predicted to take longer")
+    ap.add_argument("--sfit-cap", type=float, default=300.0, help="the same for sfit")
     ap.add_argument("--timeout", type=float, default=900.0, help="limit of one tool's process")
     ap.add_argument("--repeats", type=int, default=11)
     ap.add_argument("--budget", type=float, default=10.0, help="stop repeating after this long")
@@ -175,10 +176,13 @@ def main():
                        "closed_u": closed, "tol_label": tlabel, "tol": tol, "peer": peer,
                        "series": series}
                 est = predicted(history.get(key, []), d["points"]) if series else 0.0
-                if series and key in stopped:
+                if peer == "sfit-mt" and d["points"] > 1.01e6:
+                    row["skipped"] = "not run above 10^6 points (run time)"
+                elif series and key in stopped:
                     row["skipped"] = "skipped (smaller size timed out)"
-                elif est > args.cap:
-                    row["skipped"] = f"skipped (est. {est:.0f} s > {args.cap:.0f} s)"
+                elif est > (args.sfit_cap if peer.startswith("sfit") else args.cap):
+                    cap = args.sfit_cap if peer.startswith("sfit") else args.cap
+                    row["skipped"] = f"skipped (est. {est:.0f} s > {cap:.0f} s)"
                 else:
                     r = run_peer(args, peer, path, tol, closed)
                     row.update({k: v for k, v in r.items() if k not in ("points", "rows")})
@@ -233,7 +237,8 @@ def make_table(results):
                 continue
             c = r.get("check", {})
             ratio = f"{r['median_s'] / sfit['median_s']:.3g}" if sfit else ""
-            out.append(head + f" {fmt_time(r['median_s'])} ({len(r['times'])}) | "
+            note = f" ({r['notes']})" if r["peer"] == "scipy-grid" else ""
+            out.append(head + f" {fmt_time(r['median_s'])} ({len(r['times'])}){note} | "
                        f"{r['coefficients']} ({r['shape']}) | {c.get('max_distance', float('nan')):.3g} | "
                        f"{c.get('out_of_tolerance', '?')} | {ratio} |")
     return "\n".join(out) + "\n"
@@ -302,6 +307,9 @@ def plot(results, path):
                     (a - mx) ** 2 for a in lx)
                 label += f" (slope {slope:.2f})"
             ax.loglog(xs, ys, "o-", label=label, lw=2 if peer.startswith("sfit") else 1.2)
+            if peer == PEER_OF_SFIT:
+                ax.loglog([xs[0], xs[-1]], [ys[0], ys[0] * xs[-1] / xs[0]], "k:", lw=1,
+                          label="linear in N (from sfit's first point)")
         ax.set_title(f"generated {series} sets, T = 1e-3 of the box diagonal, bicubic")
         ax.set_xlabel("number of points")
         ax.grid(True, which="both", alpha=0.3)

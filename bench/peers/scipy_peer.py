@@ -62,12 +62,17 @@ def main(argv):
         return 1
     m, n = len(counts), counts[0]
     P = pts.reshape(m, n, 3)
-    x, y = P[:, 0, 0], P[0, :, 1]
-    if not (np.allclose(P[:, :, 0], x[:, None], rtol=0, atol=1e-9 * np.ptp(x))
-            and np.allclose(P[:, :, 1], y[None, :], rtol=0, atol=1e-9 * np.ptp(y))):
+    # Either every row lies at one x and runs along y (volcano), or at one y running along x
+    # (topobathy); z is the height over that rectilinear (x, y) grid.
+    for across, along in ((0, 1), (1, 0)):
+        a, b = P[:, 0, across], P[0, :, along]
+        if (np.allclose(P[:, :, across], a[:, None], rtol=0, atol=1e-9 * np.ptp(a))
+                and np.allclose(P[:, :, along], b[None, :], rtol=0, atol=1e-9 * np.ptp(b))):
+            break
+    else:
         print(json.dumps({"error": "not a height field on a rectilinear grid"}))
         return 1
-    z = P[:, :, 2]
+    x, y, z = a, b, P[:, :, 2]  # spline variables: x across the rows, y along them
     if x[0] > x[-1]:
         x, z = x[::-1], z[::-1, :]
     if y[0] > y[-1]:
@@ -81,7 +86,13 @@ def main(argv):
     c = np.asarray(c).reshape(len(tx) - 4, len(ty) - 4)
     gx = np.array([tx[i + 1:i + 4].mean() for i in range(len(tx) - 4)])  # Greville abscissae:
     gy = np.array([ty[i + 1:i + 4].mean() for i in range(len(ty) - 4)])  # x(u) = u exactly
-    poles = [[[gx[i], gy[j], c[i, j]] for j in range(len(gy))] for i in range(len(gx))]
+
+    def pole(i, j):
+        q = [0.0, 0.0, float(c[i, j])]
+        q[across], q[along] = float(gx[i]), float(gy[j])
+        return q
+
+    poles = [[pole(i, j) for j in range(len(gy))] for i in range(len(gx))]
     with open(out, "w") as f:
         json.dump({"degree_u": 3, "degree_v": 3, "knots_u": tx.tolist(), "knots_v": ty.tolist(),
                    "poles": poles}, f)
