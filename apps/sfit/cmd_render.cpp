@@ -314,7 +314,10 @@ void add_picture_options(CLI::App* c, PictureArgs& a, const std::string& group,
   opts.push_back(
       c->add_flag("--rows", a.rows, "draw the row curves (the surface's v-isocurves at the rows)"));
   opts.push_back(
-      c->add_option("--stripes", a.stripes, "zebra: stripe pairs across the picture (default 14)"));
+      c->add_option("--stripes", a.stripes, "zebra: stripe pairs across the surface (default 14)"));
+  opts.push_back(c->add_option("--stripe-angle", a.stripe_angle,
+                               "zebra: the light lines' angle from the vertical in degrees "
+                               "(default: along the surface's long axis)"));
   opts.push_back(
       c->add_option("--curvature-scale", a.curvature_scale,
                     "gauss/mean: the colour bar's half range (default: 95th percentile)"));
@@ -353,6 +356,10 @@ render::RenderOptions picture_options(const PictureArgs& a, render::Mode mode) {
     throw Error(ErrorCode::kUsage, "must be > 0 and <= 1000", Place{.option = "--stripes"},
                 {a.stripes});
   o.stripes = a.stripes;
+  if (!std::isnan(a.stripe_angle) && !std::isfinite(a.stripe_angle))
+    throw Error(ErrorCode::kUsage, "must be a finite angle in degrees",
+                Place{.option = "--stripe-angle"}, {a.stripe_angle});
+  o.stripe_angle = a.stripe_angle;
   if (!(a.curvature_scale >= 0) || !std::isfinite(a.curvature_scale))
     throw Error(ErrorCode::kUsage, "must be a finite number >= 0 (0: automatic)",
                 Place{.option = "--curvature-scale"}, {a.curvature_scale});

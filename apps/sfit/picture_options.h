@@ -2,6 +2,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -19,13 +20,14 @@ struct PictureArgs {
   double exaggerate = 1.0;
   bool net = false, points = false, rows = false;
   double stripes = 14;
+  double stripe_angle = NAN;  ///< NaN: along the surface's long axis
   double curvature_scale = 0;
   std::string title;
 };
 
 /// Adds --mode, --view, --up, --size, --exaggerate, --net, --points, --rows, --stripes,
-/// --curvature-scale, --title to `c` in option group `group`; with `needs` set, each of them
-/// requires that option (fit: --png).
+/// --stripe-angle, --curvature-scale, --title to `c` in option group `group`; with `needs` set,
+/// each of them requires that option (fit: --png).
 void add_picture_options(CLI::App* c, PictureArgs& a, const std::string& group,
                          CLI::Option* needs = nullptr);
 

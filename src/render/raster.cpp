@@ -165,3 +165,46 @@ void fill_box(ColorBuffer& c, double x0, double y0, double x1, double y1,
     for (int x = a; x < b; ++x) c.at(x, y) = colour;
 }
 }  // namespace sfit::render::detail
+
+namespace sfit::render::detail {
+void fill_hull(ColorBuffer& c, std::vector<Eigen::Vector2d> pts, const Eigen::Vector3f& colour) {
+  if (pts.empty()) return;
+  // Andrew's monotone chain: the hull counter-clockwise (in y-down coordinates: clockwise).
+  std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  std::vector<Eigen::Vector2d> h(2 * pts.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
+    h[k++] = pts[i];
+  }
+  for (std::size_t i = pts.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
+    h[k++] = pts[i];
+  }
+  h.resize(k > 1 ? k - 1 : k);
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const auto& p : h) {
+    x0 = std::min(x0, p.x());
+    x1 = std::max(x1, p.x());
+    y0 = std::min(y0, p.y());
+    y1 = std::max(y1, p.y());
+  }
+  const int a = std::max(0, static_cast<int>(std::floor(x0))),
+            b = std::min(c.width - 1, static_cast<int>(std::ceil(x1)));
+  const int d = std::max(0, static_cast<int>(std::floor(y0))),
+            e = std::min(c.height - 1, static_cast<int>(std::ceil(y1)));
+  for (int y = d; y <= e; ++y)
+    for (int x = a; x <= b; ++x) {
+      const Eigen::Vector2d q(x + 0.5, y + 0.5);
+      bool inside = true;
+      for (std::size_t i = 0; i < h.size() && inside; ++i)
+        inside = h.size() < 3 ? false : cross(h[i], h[(i + 1) % h.size()], q) >= 0;
+      if (inside) c.at(x, y) = colour;
+    }
+}
+}  // namespace sfit::render::detail

@@ -73,6 +73,8 @@ void draw_ring(Image& img, double cx, double cy, double r, double t, Rgb colour)
 }  // namespace sfit::render::detail
 
 namespace sfit::render::detail {
+/// Fills the samples whose centres lie in the convex hull of `points` (x, y in samples).
+void fill_hull(ColorBuffer& c, std::vector<Eigen::Vector2d> points, const Eigen::Vector3f& colour);
 /// Fills the samples of [x0, x1) x [y0, y1) (clipped) with `colour`.
 void fill_box(ColorBuffer& c, double x0, double y0, double x1, double y1,
               const Eigen::Vector3f& colour);

@@ -46,21 +46,20 @@ Image draw_projection(const RowData& d, int w, int h, int axis_a, int axis_b, do
     return Vector3d((ox + s * p[axis_a]) * SS, (oy - s * p[axis_b]) * SS, 0.0);
   };
   const detail::DepthTest none{};
-  // The band: a box of +-bound around the curve, swept along it.
+  // The band: a box of +-bound around the curve, swept along it (each segment sweeps the
+  // convex hull of the box at its two ends).
   const double ba = d.bound[axis_a] * s * SS, bb = d.bound[axis_b] * s * SS;
   if (ba > 0 || bb > 0) {
-    const double step = std::max(0.5, std::min(ba > 0 ? ba : bb, bb > 0 ? bb : ba));
     for (std::size_t i = 0; i + 1 < d.curve_samples.size(); ++i) {
       const Vector3d p = at(d.curve_samples[i]), q = at(d.curve_samples[i + 1]);
       if (std::max(p.x(), q.x()) + ba < 0 || std::min(p.x(), q.x()) - ba > cb.width ||
           std::max(p.y(), q.y()) + bb < 0 || std::min(p.y(), q.y()) - bb > cb.height)
         continue;  // outside this view (an inset shows a small part)
-      const int n =
-          std::clamp(static_cast<int>(std::ceil((q - p).head<2>().norm() / step)), 1, 100000);
-      for (int k = 0; k < n; ++k) {
-        const Vector3d c = p + (q - p) * (static_cast<double>(k) / n);
-        detail::fill_box(cb, c.x() - ba, c.y() - bb, c.x() + ba + 1, c.y() + bb + 1, kBand);
-      }
+      std::vector<Eigen::Vector2d> corners;
+      for (const Vector3d& e : {p, q})
+        for (double sa : {-1.0, 1.0})
+          for (double sb : {-1.0, 1.0}) corners.emplace_back(e.x() + sa * ba, e.y() + sb * bb);
+      detail::fill_hull(cb, std::move(corners), kBand);
     }
   }
   // Control polygon.

@@ -1,11 +1,13 @@
 #include "sfit/render/surface_picture.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 #include <numeric>
 
 #include "nearest.h"
@@ -220,7 +222,6 @@ RenderResult render_surface(const Scene& sc, const RenderOptions& o) {
                .norm();
     len_v = std::max(len_v, l);
   }
-  (void)n_surface_fit;
   const int nu = std::clamp(static_cast<int>(std::ceil(len_u / 3)), cu, 1200);
   const int nv = std::clamp(static_cast<int>(std::ceil(len_v / 3)), cv, 1200);
   // Deviation mode: each data point's ratio |d|/T, and the surface tinted by the ratio of
@@ -286,16 +287,47 @@ RenderResult render_surface(const Scene& sc, const RenderOptions& o) {
   std::vector<Vector3f> normal(NS, Vector3f::Zero());  // facing the viewer
   std::vector<double> value(NS, NAN);                  // curvature or stripe coordinate
   std::vector<double> samples;                         // curvature values for the scale
-  // Highlight lines (Beier and Chen 1994): a plane of parallel light lines between the eye
-  // and the scene, normal to the view, the lines along the screen's vertical. A point's
-  // highlight is where its normal line meets that plane; its coordinate across the lines, x,
-  // is read as the angle atan(x / D) seen from the picture's centre at distance D = the
-  // picture's width, so that a plane still gets straight parallel stripes (nearly evenly
-  // spaced) while a normal turning towards the silhouette gives a bounded number of stripes.
-  const double world_w = (res.plot_x1 - res.plot_x0) / cam.scale;
-  const double light_plane = depth_hi + 0.5 * world_w;
-  const double centre_right = (0.5 * (res.plot_x0 + res.plot_x1) - cam.origin.x()) / cam.scale;
-  const double stripe_h = 2 * std::atan(0.5) / (2 * o.stripes);  // angle of one stripe
+  // Highlight lines after Beier and Chen (1994): parallel light lines in a plane normal to
+  // the view, a height h above each point; the point's highlight is where its normal line
+  // meets that plane, and its coordinate across the lines is x = P.a + h (N.a) / (N.t)
+  // (a across the lines, t towards the eye). On a plane x is linear in P: straight, parallel,
+  // evenly spaced stripes. On a curved surface the normal bends them: h = 6 stripe widths, so
+  // a stripe stands for about 10 degrees of turn near the middle. (Beier and Chen keep the
+  // light plane fixed; a fixed height keeps deep scenes, a blade seen along its span, from
+  // running to noise.) Towards the silhouette x runs off to infinity, so it is read through
+  // D asinh((x - m) / D), with m its median and D the surface's extent across the lines:
+  // linear in the middle, logarithmic far out. The lines run along the surface's longer axis
+  // on the picture (or at stripe_angle from the vertical).
+  double angle = o.stripe_angle * std::numbers::pi / 180;
+  if (std::isnan(o.stripe_angle)) {
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (std::size_t i = 0; i < n_surface_fit; ++i)
+      mean += Eigen::Vector2d(fit_points[i].dot(cam.right), fit_points[i].dot(cam.up));
+    mean /= static_cast<double>(n_surface_fit);
+    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+    for (std::size_t i = 0; i < n_surface_fit; ++i) {
+      const Eigen::Vector2d d =
+          Eigen::Vector2d(fit_points[i].dot(cam.right), fit_points[i].dot(cam.up)) - mean;
+      cov += d * d.transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+    const Eigen::Vector2d major = eig.eigenvectors().col(1);  // (right, up) components
+    // A roundish outline has no long axis: keep the lines vertical then.
+    angle =
+        eig.eigenvalues()(1) > 2.0 * eig.eigenvalues()(0) ? std::atan2(major.x(), major.y()) : 0.0;
+    if (angle > std::numbers::pi / 2) angle -= std::numbers::pi;
+    if (angle < -std::numbers::pi / 2) angle += std::numbers::pi;
+  }
+  res.stripe_angle = angle * 180 / std::numbers::pi;
+  const Vector3d across = std::cos(angle) * cam.right - std::sin(angle) * cam.up;
+  double lo_x = INFINITY, hi_x = -INFINITY;
+  for (std::size_t i = 0; i < n_surface_fit; ++i) {
+    lo_x = std::min(lo_x, fit_points[i].dot(across));
+    hi_x = std::max(hi_x, fit_points[i].dot(across));
+  }
+  const double world_w = std::max(hi_x - lo_x, 1e-300);
+  const double stripe_h = world_w / (2 * o.stripes);  // width of one stripe
+  const double height = 6 * stripe_h;
   for (std::size_t k = 0; k < NS; ++k) {
     if (!g.covered(k)) continue;
     const Local l = local_geometry(s, g.u[k], g.v[k]);
@@ -310,9 +342,8 @@ RenderResult render_surface(const Scene& sc, const RenderOptions& o) {
         value[k] = l.mean;
         break;
       case Mode::kZebra: {
-        const double nt = std::max(n.dot(cam.toward), 1e-6);
-        const double reach = (light_plane - l.p.dot(cam.toward)) / nt;
-        value[k] = std::atan(((l.p + reach * n).dot(cam.right) - centre_right) / world_w);
+        const double nt = std::max(n.dot(cam.toward), 1e-9);
+        value[k] = l.p.dot(across) + height * n.dot(across) / nt;
         break;
       }
       default:
@@ -320,6 +351,18 @@ RenderResult render_surface(const Scene& sc, const RenderOptions& o) {
     }
     if ((o.mode == Mode::kGauss || o.mode == Mode::kMean) && std::isfinite(value[k]))
       samples.push_back(value[k]);
+  }
+  if (o.mode == Mode::kZebra) {
+    std::vector<double> xs;
+    for (std::size_t k = 0; k < NS; ++k)
+      if (g.covered(k)) xs.push_back(value[k]);
+    if (!xs.empty()) {
+      std::nth_element(xs.begin(), xs.begin() + static_cast<std::ptrdiff_t>(xs.size() / 2),
+                       xs.end());
+      const double m = xs[xs.size() / 2];
+      for (std::size_t k = 0; k < NS; ++k)
+        if (g.covered(k)) value[k] = world_w * std::asinh((value[k] - m) / world_w);
+    }
   }
   if (o.mode == Mode::kGauss || o.mode == Mode::kMean) {
     if (!samples.empty()) {
@@ -342,12 +385,12 @@ RenderResult render_surface(const Scene& sc, const RenderOptions& o) {
       if (!g.covered(k)) continue;
       const Vector3d n = normal[k].cast<double>();
       const double key = std::max(0.0, n.dot(lights.key)), fill = std::max(0.0, n.dot(lights.fill));
-      const double spec = std::pow(std::max(0.0, n.dot(half)), 48);
-      const float light = static_cast<float>(0.22 + 0.60 * key + 0.25 * fill);
+      const double spec = std::pow(std::max(0.0, n.dot(half)), 32);
+      const float light = static_cast<float>(0.30 + 0.55 * key + 0.22 * fill);
       Vector3f c = Vector3f::Zero();
       switch (o.mode) {
         case Mode::kShaded:
-          c = base_shaded * light + Vector3f::Constant(static_cast<float>(0.30 * spec));
+          c = base_shaded * light + Vector3f::Constant(static_cast<float>(0.20 * spec));
           break;
         case Mode::kDeviation: {
           const double t = g.attr[k];
@@ -433,11 +476,12 @@ RenderResult render_surface(const Scene& sc, const RenderOptions& o) {
                      [&](auto a, auto b) { return ratio[a] < ratio[b]; });
     const detail::DepthTest t{&g, slack, 0.f};
     const Vector3f outline(0.3f, 0.3f, 0.3f);
-    const double rim = radius >= 2.5 ? 0.7 : 0.4;
+    // Sparse points get a dark rim; dense ones merge into the tinted surface.
+    const double rim = radius >= 2.5 ? 0.7 : 0.0;
     for (std::size_t k : order) {
       const Rgb c = ratio[k] > 1 + 1e-9 ? kExceeded : sequential(ratio[k]);
       const Vector3d q = sample_pos(cam.exaggerate(sc.rows->points()[k]));
-      detail::draw_disc(cb, q, (radius + rim) * px, outline, t);
+      if (rim > 0) detail::draw_disc(cb, q, (radius + rim) * px, outline, t);
       detail::draw_disc(cb, q, radius * px, detail::to_float(c), t);
     }
     if (n_points) {
@@ -447,7 +491,7 @@ RenderResult render_surface(const Scene& sc, const RenderOptions& o) {
       const std::size_t k = order.back();
       const Rgb c = ratio[k] > 1 + 1e-9 ? kExceeded : sequential(ratio[k]);
       const Vector3d q = sample_pos(cam.exaggerate(sc.rows->points()[k]));
-      detail::draw_disc(cb, q, (radius + rim) * px, outline, {});
+      detail::draw_disc(cb, q, (radius + 0.7) * px, outline, {});
       detail::draw_disc(cb, q, radius * px, detail::to_float(c), {});
     }
   } else if (o.points) {
@@ -514,8 +558,10 @@ RenderResult render_surface(const Scene& sc, const RenderOptions& o) {
     case Mode::kShaded:
       break;
     case Mode::kZebra:
-      note = "highlight stripes: light lines parallel to the screen's vertical, " +
-             fmt_g(o.stripes) + " pairs across";
+      note = "highlight stripes: " + fmt_g(o.stripes) + " pairs across the surface, light lines " +
+             (std::abs(res.stripe_angle) < 0.05
+                  ? std::string("vertical")
+                  : fmt_g(res.stripe_angle, 2) + "\xC2\xB0 from vertical");
       break;
     case Mode::kDeviation:
       if (n_points) {

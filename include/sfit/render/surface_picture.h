@@ -3,6 +3,7 @@
 // points and the row curves drawn over it. Software rasterised, headless.
 #pragma once
 
+#include <cmath>
 #include <span>
 #include <string>
 #include <vector>
@@ -37,7 +38,9 @@ struct RenderOptions {
   bool points = false;             ///< data points (needs Scene::rows)
   bool rows = false;               ///< the surface's v-isocurves at the rows (needs Scene::row_v)
   int supersample = 3;             ///< samples per pixel in x and y (anti-aliasing), 1 ... 4
-  double stripes = 14;             ///< zebra: stripe pairs across the picture's width
+  double stripes = 14;             ///< zebra: stripe pairs across the surface
+  double stripe_angle = NAN;       ///< zebra: the light lines' angle from the vertical in
+                                   ///< degrees, clockwise; NaN: along the surface's long axis
   double curvature_scale = 0;      ///< colour-bar half range for gauss/mean; 0: automatic
   std::vector<std::string> title;  ///< lines printed at the top (UTF-8)
 };
@@ -61,8 +64,9 @@ struct RenderResult {
   int bar_x0 = 0, bar_y0 = 0, bar_x1 = 0, bar_y1 = 0;      ///< colour bar (empty if none)
   double scale = 0;  ///< colour-bar half range (gauss/mean) or 1 (deviation, in T)
   double value_min = 0, value_max = 0;  ///< curvature seen over the visible surface
-  long worst_point = -1;                ///< deviation: index in rows.points() of the largest ratio
-  double worst_ratio = 0;               ///< its |deviation| / T (per-axis maximum)
+  double stripe_angle = 0;  ///< zebra: the light lines' angle used (degrees from vertical)
+  long worst_point = -1;    ///< deviation: index in rows.points() of the largest ratio
+  double worst_ratio = 0;   ///< its |deviation| / T (per-axis maximum)
   double seconds = 0;
 };
 
