@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cstring>
 #include <random>
 
 namespace sfit::detail {
@@ -54,6 +55,40 @@ TEST(BandedLeastSquares, DetectsAnUndeterminedUnknown) {
   for (int r = 0; r < 4; ++r) lsq.add(r, c, Point(1, 2, 3));
   std::vector<Point> x;
   EXPECT_FALSE(lsq.solve(x));
+}
+
+}  // namespace
+}  // namespace sfit::detail
+
+namespace sfit::detail {
+namespace {
+
+TEST(BandedLeastSquares, ReplayIsBitIdenticalToFactorisingAfresh) {
+  for (bool periodic : {false, true}) {
+    const int n = 12, w = 4, rows = 50;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> U(-1, 1);
+    std::vector<std::vector<double>> coef(rows, std::vector<double>(w));
+    std::vector<int> first(rows);
+    for (int r = 0; r < rows; ++r) {
+      first[r] = periodic ? r % n : std::min(r * (n - w + 1) / rows, n - w);
+      for (double& c : coef[r]) c = U(rng);
+    }
+    BandedLeastSquares shared(n, w, periodic);
+    shared.record_rotations();
+    for (int r = 0; r < rows; ++r) shared.add(first[r], coef[r].data(), Point::Zero());
+    for (int trial = 0; trial < 3; ++trial) {
+      std::vector<Point> rhs(rows);
+      for (Point& p : rhs) p = Point(U(rng), U(rng), U(rng));
+      BandedLeastSquares fresh(n, w, periodic);
+      for (int r = 0; r < rows; ++r) fresh.add(first[r], coef[r].data(), rhs[r]);
+      std::vector<Point> a, b, z;
+      ASSERT_TRUE(fresh.solve(a));
+      ASSERT_TRUE(shared.replay(rhs.data(), b, z));
+      ASSERT_EQ(a.size(), b.size());
+      EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(Point))) << periodic;
+    }
+  }
 }
 
 }  // namespace

@@ -6,6 +6,12 @@ namespace sfit {
 /// Largest degree sfit supports in either direction.
 inline constexpr int kMaxDegree = 20;
 
+/// Control-point index first + a reduced mod count, for 0 <= first < count and
+/// 0 <= a <= degree < count (so one subtraction suffices; no integer division).
+inline int wrap_index(int i, int count) {
+  return i < count ? i : i - count;
+}
+
 /// Evaluates the degree+1 basis functions that are non-zero at parameter t of a uniform curve
 /// with `count` control points (Cox-de Boor, The NURBS Book algorithm A2.2).
 /// Writes them to values[0 .. degree] and returns the index of the control point that

@@ -77,6 +77,7 @@ void BandedLeastSquares::add(int first, const double* coef, const Point& rhs, do
         double* S = tail_ ? &side_[static_cast<std::size_t>(c) * tail_] : nullptr;
         for (int t = 0; t < tail_; ++t) rotate(S[t], f_[t], cs, sn);
         for (int a = 0; a < 3; ++a) rotate(z_[c][a], y[a], cs, sn);
+        if (recording_) log_.push_back({c, cs, sn});
       }
       // Shift the band window one column to the right.
       bool any = false;
@@ -98,10 +99,37 @@ void BandedLeastSquares::add(int first, const double* coef, const Point& rhs, do
     f_[a] = 0.0;
     for (int b = a + 1; b < tail_; ++b) rotate(T[b], f_[b], cs, sn);
     for (int k = 0; k < 3; ++k) rotate(z_[nb_ + a][k], y[k], cs, sn);
+    if (recording_) log_.push_back({nb_ + a, cs, sn});
   }
+  if (recording_) equation_end_.push_back(log_.size());
+}
+
+bool BandedLeastSquares::replay(const Point* rhs, std::vector<Point>& x,
+                                std::vector<Point>& z) const {
+  z.assign(static_cast<std::size_t>(n_), Point::Zero());
+  std::size_t r = 0;
+  for (std::size_t e = 0; e < equation_end_.size(); ++e) {
+    Point y = 1.0 * rhs[e];  // add() scales by the weight, here 1
+    for (; r < equation_end_[e]; ++r) {
+      const Rotation& q = log_[r];
+      for (int a = 0; a < 3; ++a) rotate(z[q.row][a], y[a], q.c, q.s);
+    }
+  }
+  return back_substitute(z, x);
+}
+
+std::size_t BandedLeastSquares::bytes() const {
+  return sizeof(*this) +
+         sizeof(double) * (band_.size() + side_.size() + tri_.size() + h_.size() + f_.size()) +
+         sizeof(Point) * z_.size() + sizeof(Rotation) * log_.capacity() +
+         sizeof(std::size_t) * equation_end_.capacity();
 }
 
 bool BandedLeastSquares::solve(std::vector<Point>& x) const {
+  return back_substitute(z_, x);
+}
+
+bool BandedLeastSquares::back_substitute(const std::vector<Point>& z, std::vector<Point>& x) const {
   double maxpiv = 0.0;
   for (int c = 0; c < nb_; ++c) maxpiv = std::max(maxpiv, std::abs(band_[c * w_]));
   for (int a = 0; a < tail_; ++a) maxpiv = std::max(maxpiv, std::abs(tri_[a * tail_ + a]));
@@ -112,14 +140,14 @@ bool BandedLeastSquares::solve(std::vector<Point>& x) const {
   for (int a = tail_ - 1; a >= 0; --a) {
     const double piv = tri_[a * tail_ + a];
     if (!(std::abs(piv) > tiny)) return false;
-    Point s = z_[nb_ + a];
+    Point s = z[nb_ + a];
     for (int b = a + 1; b < tail_; ++b) s -= tri_[a * tail_ + b] * sol[nb_ + b];
     sol[nb_ + a] = s / piv;
   }
   for (int c = nb_ - 1; c >= 0; --c) {
     const double* R = &band_[static_cast<std::size_t>(c) * w_];
     if (!(std::abs(R[0]) > tiny)) return false;
-    Point s = z_[c];
+    Point s = z[c];
     for (int d = 1; d < w_ && c + d < nb_; ++d) s -= R[d] * sol[c + d];
     for (int t = 0; t < tail_; ++t) s -= side_[c * tail_ + t] * sol[nb_ + t];
     sol[c] = s / R[0];

@@ -32,6 +32,17 @@ class BandedLeastSquares {
   /// do not determine every unknown (Schoenberg-Whitney condition violated).
   bool solve(std::vector<Point>& x) const;
 
+  /// Records every rotation add() applies to the right-hand side from now on, so that the
+  /// same matrix can later be solved for other right-hand sides by replay(). The rotations
+  /// depend on the matrix only; replaying them performs exactly the floating-point
+  /// operations add() performed, so the results are bit-identical. Unit weights only.
+  void record_rotations() { recording_ = true; }
+  /// Solves for right-hand sides rhs[0 .. equations-1] (one per add(), in order) with the
+  /// recorded rotations and the factor R. `z` is work space. Same return value as solve().
+  bool replay(const Point* rhs, std::vector<Point>& x, std::vector<Point>& z) const;
+  /// Bytes held (for caches).
+  std::size_t bytes() const;
+
  private:
   int n_, w_, tail_, nb_;
   std::vector<double> band_;  // band_[c * w_ + d] = R(c, c + d), c < nb_
@@ -40,6 +51,16 @@ class BandedLeastSquares {
   std::vector<Point> z_;      // rotated right-hand sides, one per row of R
   // Work space for add().
   std::vector<double> h_, f_;
+  // The rotation log of record_rotations(): row of R, cosine, sine; and the end of each
+  // equation's rotations in it.
+  struct Rotation {
+    int row;
+    double c, s;
+  };
+  bool recording_ = false;
+  std::vector<Rotation> log_;
+  std::vector<std::size_t> equation_end_;
+  bool back_substitute(const std::vector<Point>& z, std::vector<Point>& x) const;
 };
 
 }  // namespace sfit::detail

@@ -21,7 +21,11 @@ Point Curve::evaluate(double t) const {
   const int n = count();
   const int first = eval_basis(degree, n, periodic, t, b.data());
   Point p = Point::Zero();
-  for (int i = 0; i <= degree; ++i) p += b[i] * control[(first + i) % n];
+  if (first + degree < n) {
+    for (int i = 0; i <= degree; ++i) p += b[i] * control[first + i];
+  } else {
+    for (int i = 0; i <= degree; ++i) p += b[i] * control[wrap_index(first + i, n)];
+  }
   return p;
 }
 
@@ -31,7 +35,8 @@ Point Curve::derivative(double t, int order) const {
   const int n = count();
   const int first = eval_basis_derivatives(degree, n, periodic, t, order, d.data());
   Point p = Point::Zero();
-  for (int i = 0; i <= degree; ++i) p += d[order * (degree + 1) + i] * control[(first + i) % n];
+  for (int i = 0; i <= degree; ++i)
+    p += d[order * (degree + 1) + i] * control[wrap_index(first + i, n)];
   return p;
 }
 

@@ -2,54 +2,100 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <tuple>
 
 #include "banded_lsq.h"
 #include "sfit/basis.h"
 #include "sfit/error.h"
 #include "sfit/parametrization.h"
+#include "thread_cache.h"
 
 namespace sfit {
 
 namespace {
 
-// Reusable buffers of one thread's curve fits (no allocation per solve in a search).
-struct Workspace {
+// The data-independent part of one least-squares fit: parameters, basis values and the
+// Givens factorisation with its rotation log (banded_lsq.h). Every row of the same length
+// and every column of the transverse stage shares it for a given count (the trick of SISL's
+// s1537: fit many curves of one parametrisation with one factorisation); fitting a curve is
+// then a replay of the rotations on its points, bit-identical to factorising afresh.
+struct Collocation {
+  int degree, count, n_points;
+  bool periodic;
   std::vector<double> t, basis;
   std::vector<int> first;
-  std::vector<Point> control;
+  detail::BandedLeastSquares lsq;
+  bool singular = false;
+
+  Collocation(int p, int c, bool per, int n)
+      : degree(p), count(c), n_points(n), periodic(per), lsq(c, p + 1, per) {
+    const int w = p + 1;
+    t = paper_parameters(p, c, per, n);
+    basis.resize(static_cast<std::size_t>(n) * w);
+    first.resize(static_cast<std::size_t>(n));
+    lsq.record_rotations();
+    const Point zero = Point::Zero();
+    for (int j = 0; j < n; ++j) {
+      double* b = &basis[static_cast<std::size_t>(j) * w];
+      first[j] = eval_basis(p, c, per, t[j], b);
+      lsq.add(first[j], b, zero);
+    }
+    std::vector<Point> x;
+    singular = !lsq.solve(x);
+  }
+  std::size_t bytes() const {
+    return sizeof(*this) + sizeof(double) * (t.size() + basis.size()) + sizeof(int) * first.size() +
+           lsq.bytes();
+  }
+};
+
+// Per-thread cache of collocations; rows too long to be worth caching are factorised
+// directly.
+constexpr std::size_t kCacheBytes = std::size_t{64} << 20;
+constexpr std::size_t kLongestCached = 1 << 17;
+thread_local detail::ThreadCache<std::tuple<int, int, bool, int>, Collocation> cache(kCacheBytes);
+
+const Collocation& collocation(int degree, int count, bool periodic, int n_points,
+                               std::unique_ptr<Collocation>& uncached) {
+  if (static_cast<std::size_t>(n_points) > kLongestCached) {
+    uncached = std::make_unique<Collocation>(degree, count, periodic, n_points);
+    return *uncached;
+  }
+  return cache.get({degree, count, periodic, n_points}, [&] {
+    return std::make_unique<Collocation>(degree, count, periodic, n_points);
+  });
+}
+
+struct Workspace {
+  std::vector<Point> control, z;
 };
 thread_local Workspace tls;
 
 // Least squares with `count` control points at the paper's parameters into ws.control.
 // With `bound`, returns early (false) at the first point out of it; otherwise computes
-// max_dev over all points and returns true.
+// max_dev over all points and returns true. `used` is the collocation it used.
 bool solve_count(std::span<const Point> points, int degree, bool periodic, int count,
-                 const Point* bound, Workspace& ws, Point& max_dev) {
+                 const Point* bound, Workspace& ws, Point& max_dev, const Collocation*& used,
+                 std::unique_ptr<Collocation>& uncached) {
   const int n_points = static_cast<int>(points.size());
   const int w = degree + 1;
-  ws.t = paper_parameters(degree, count, periodic, n_points);
-  ws.basis.resize(static_cast<std::size_t>(n_points) * w);
-  ws.first.resize(static_cast<std::size_t>(n_points));
-  detail::BandedLeastSquares lsq(count, w, periodic);
-  for (int j = 0; j < n_points; ++j) {
-    double* b = &ws.basis[static_cast<std::size_t>(j) * w];
-    ws.first[j] = eval_basis(degree, count, periodic, ws.t[j], b);
-    lsq.add(ws.first[j], b, points[j]);
-  }
-  if (!lsq.solve(ws.control))
+  const Collocation& C = collocation(degree, count, periodic, n_points, uncached);
+  used = &C;
+  if (C.singular || !C.lsq.replay(points.data(), ws.control, ws.z))
     throw Error(
         ErrorCode::kInternal, "singular least-squares system in the curve stage", Place{},
         {static_cast<double>(degree), static_cast<double>(count), static_cast<double>(n_points)});
   max_dev.setZero();
   const auto& P = ws.control;
   for (int j = 0; j < n_points; ++j) {
-    const double* b = &ws.basis[static_cast<std::size_t>(j) * w];
-    const int f = ws.first[j];
+    const double* b = &C.basis[static_cast<std::size_t>(j) * w];
+    const int f = C.first[j];
     Point c = Point::Zero();
     if (f + w <= count) {
       for (int i = 0; i < w; ++i) c += b[i] * P[f + i];
     } else {
-      for (int i = 0; i < w; ++i) c += b[i] * P[(f + i) % count];
+      for (int i = 0; i < w; ++i) c += b[i] * P[wrap_index(f + i, count)];
     }
     const Point d = (c - points[j]).cwiseAbs();
     if (bound && !(d.array() <= bound->array()).all()) return false;
@@ -58,12 +104,12 @@ bool solve_count(std::span<const Point> points, int degree, bool periodic, int c
   return true;
 }
 
-CurveFit from_workspace(const Workspace& ws, int degree, bool periodic, const Point& max_dev) {
+CurveFit from_workspace(const Workspace& ws, const Collocation& C, const Point& max_dev) {
   CurveFit f;
-  f.curve.degree = degree;
-  f.curve.periodic = periodic;
+  f.curve.degree = C.degree;
+  f.curve.periodic = C.periodic;
   f.curve.control = ws.control;
-  f.parameters = ws.t;
+  f.parameters = C.t;
   f.max_deviation = max_dev;
   return f;
 }
@@ -72,8 +118,10 @@ CurveFit from_workspace(const Workspace& ws, int degree, bool periodic, const Po
 
 CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count) {
   Point dev;
-  solve_count(points, degree, periodic, count, nullptr, tls, dev);
-  CurveFit f = from_workspace(tls, degree, periodic, dev);
+  const Collocation* used = nullptr;
+  std::unique_ptr<Collocation> uncached;
+  solve_count(points, degree, periodic, count, nullptr, tls, dev, used, uncached);
+  CurveFit f = from_workspace(tls, *used, dev);
   f.solves = 1;
   return f;
 }
@@ -103,9 +151,11 @@ CurveFit fit_curve(std::span<const Point> points, const CurveFitOptions& o) {
   auto holds = [&](int count) {
     Point dev;
     ++solves;
-    const bool ok =
-        solve_count(points, o.degree, o.periodic, count, count == n ? nullptr : &o.bound, ws, dev);
-    if (ok) best = from_workspace(ws, o.degree, o.periodic, dev);
+    const Collocation* used = nullptr;
+    std::unique_ptr<Collocation> uncached;
+    const bool ok = solve_count(points, o.degree, o.periodic, count,
+                                count == n ? nullptr : &o.bound, ws, dev, used, uncached);
+    if (ok) best = from_workspace(ws, *used, dev);
     return ok;
   };
   auto finish = [&]() {

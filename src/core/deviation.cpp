@@ -19,14 +19,14 @@ DeviationCheck check_deviation(const Surface& s, const Rows& rows, std::span<con
     const int fv = eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
     for (int i = 0; i < s.count_u; ++i) {
       Point q = Point::Zero();
-      for (int b = 0; b <= s.degree_v; ++b) q += bv[b] * s.at(i, (fv + b) % s.count_v);
+      for (int b = 0; b <= s.degree_v; ++b) q += bv[b] * s.at(i, wrap_index(fv + b, s.count_v));
       iso[i] = q;
     }
     const auto row = rows[j];
     for (std::size_t k = 0; k < row.size(); ++k) {
       const int fu = eval_basis(s.degree_u, s.count_u, s.periodic_u, u[off[j] + k], bu.data());
       Point p = Point::Zero();
-      for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[(fu + a) % s.count_u];
+      for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[wrap_index(fu + a, s.count_u)];
       const Point d = p - row[k];
       const Point ad = d.cwiseAbs();
       if (!ad.allFinite()) {

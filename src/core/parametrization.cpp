@@ -26,12 +26,22 @@ std::vector<double> paper_parameters(int degree, int count, bool periodic, int n
       t[j] = wrap(o + static_cast<double>(j) * count / n_points, count);
     return t;
   }
-  if (n_points == 1) {
-    t[0] = 0.0;
+  if (n_points == 1 || count == 1) {
+    std::fill(t.begin(), t.end(), 0.0);
+    if (n_points > 1) t.back() = domain_end(degree, count, false);
     return t;
   }
+  // The Greville sequence once, then read at fractional indices (greville_at() per point
+  // would recompute two abscissae each time).
+  std::vector<double> g(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) g[i] = greville(degree, count, false, i);
   const double a = static_cast<double>(count - 1) / (n_points - 1);
-  for (int j = 0; j < n_points; ++j) t[j] = greville_at(degree, count, false, a * j);
+  for (int j = 0; j < n_points; ++j) {
+    const double x = a * j;
+    int m = static_cast<int>(x);
+    if (m >= count - 1) m = count - 2;
+    t[j] = g[m] + (x - m) * (g[m + 1] - g[m]);
+  }
   t[n_points - 1] = domain_end(degree, count, false);  // exact end despite round-off
   return t;
 }

@@ -2,13 +2,91 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <numeric>
+#include <optional>
+#include <tuple>
 
 #include "banded_lsq.h"
 #include "sfit/basis.h"
 #include "sfit/parametrization.h"
+#include "thread_cache.h"
 
 namespace sfit {
+namespace {
+
+// What a re-representation needs that does not depend on the control points: the data's new
+// parameters and basis values there, the old basis at the sample parameters tau_l, the new
+// basis at the Greville abscissae g_l and the factorised interpolation at them. Rows of one
+// length and count (and all columns) share it.
+struct Geometry {
+  std::vector<double> old_t;  // the old parameters it was made for
+  std::vector<double> params, db, sb, gb;
+  std::vector<int> dfirst, sfirst, gfirst;
+  detail::BandedLeastSquares interp;
+  bool singular = false;
+
+  Geometry(const CurveFit& fit, std::size_t n_data, int degree, int count, bool periodic,
+           std::span<const double> target)
+      : old_t(fit.parameters), interp(count, degree + 1, periodic) {
+    const Curve& old = fit.curve;
+    const int w = degree + 1, wo = old.degree + 1;
+    const ReparameterMap map(old.degree, old.count(), degree, count, periodic);
+    if (target.empty()) {
+      params.resize(n_data);
+      for (std::size_t k = 0; k < n_data; ++k) params[k] = map(fit.parameters[k]);
+    } else {
+      params.assign(target.begin(), target.end());
+    }
+    db.resize(n_data * w);
+    dfirst.resize(n_data);
+    for (std::size_t k = 0; k < n_data; ++k)
+      dfirst[k] = eval_basis(degree, count, periodic, params[k], &db[k * w]);
+    const auto& tau = map.samples();
+    const auto& g = map.targets();
+    sb.resize(static_cast<std::size_t>(count) * wo);
+    sfirst.resize(static_cast<std::size_t>(count));
+    gb.resize(static_cast<std::size_t>(count) * w);
+    gfirst.resize(static_cast<std::size_t>(count));
+    interp.record_rotations();
+    for (int l = 0; l < count; ++l) {
+      sfirst[l] = eval_basis(old.degree, old.count(), old.periodic, tau[l],
+                             &sb[static_cast<std::size_t>(l) * wo]);
+      gfirst[l] = eval_basis(degree, count, periodic, g[l], &gb[static_cast<std::size_t>(l) * w]);
+      interp.add(gfirst[l], &gb[static_cast<std::size_t>(l) * w], Point::Zero());
+    }
+    std::vector<Point> x;
+    singular = !interp.solve(x);
+  }
+  std::size_t bytes() const {
+    return sizeof(*this) +
+           sizeof(double) * (old_t.size() + params.size() + db.size() + sb.size() + gb.size()) +
+           sizeof(int) * (dfirst.size() + sfirst.size() + gfirst.size()) + interp.bytes();
+  }
+};
+
+using GeometryKey = std::tuple<int, int, bool, int, int, std::size_t, bool>;
+thread_local detail::ThreadCache<GeometryKey, Geometry> geometries(std::size_t{64} << 20);
+
+// The cached geometry when it was made for the same old parameters and target; a fresh one
+// (in `uncached`) otherwise, e.g. for a caller's own parameters.
+const Geometry& geometry(const CurveFit& fit, std::size_t n_data, int degree, int count,
+                         bool periodic, std::span<const double> target,
+                         std::unique_ptr<Geometry>& uncached) {
+  const Curve& old = fit.curve;
+  const GeometryKey key{old.degree, old.count(), periodic, degree, count, n_data, !target.empty()};
+  const Geometry& G = geometries.get(key, [&] {
+    return std::make_unique<Geometry>(fit, n_data, degree, count, periodic, target);
+  });
+  const bool same_old = G.old_t == fit.parameters;
+  const bool same_target =
+      target.empty() || std::equal(target.begin(), target.end(), G.params.begin(), G.params.end());
+  if (same_old && same_target) return G;
+  uncached = std::make_unique<Geometry>(fit, n_data, degree, count, periodic, target);
+  return *uncached;
+}
+
+}  // namespace
 
 Rerepresentation rerepresent(const CurveFit& fit, std::span<const Point> data, int degree,
                              int count, bool periodic, const Point& bound,
@@ -30,48 +108,68 @@ Rerepresentation rerepresent(const CurveFit& fit, std::span<const Point> data, i
     return out;
   }
 
-  const ReparameterMap map(old.degree, old.count(), degree, count, periodic);
-  if (target_parameters.empty()) {
-    out.parameters.resize(n_data);
-    for (std::size_t k = 0; k < n_data; ++k) out.parameters[k] = map(fit.parameters[k]);
-  } else {
-    out.parameters.assign(target_parameters.begin(), target_parameters.end());
+  // Same degree and count: the re-representation is the curve itself (ReparameterMap is the
+  // identity and interpolating its own samples returns it), so skip the work.
+  if (old.degree == degree && old.count() == count && old.periodic == periodic &&
+      (target_parameters.empty() || std::equal(target_parameters.begin(), target_parameters.end(),
+                                               fit.parameters.begin(), fit.parameters.end()))) {
+    out.curve = old;
+    out.parameters = fit.parameters;
+    out.max_deviation = fit.max_deviation;  // measured at these parameters by the curve stage
+    out.holds = (out.max_deviation.array() <= bound.array()).all();
+    return out;
   }
 
-  // Samples of the old curve (METHOD.md 4 step 1) and their places on the new one (step 2).
-  const auto& tau = map.samples();
-  const auto& g = map.targets();
+  std::unique_ptr<Geometry> uncached;
+  const Geometry& G = geometry(fit, n_data, degree, count, periodic, target_parameters, uncached);
+  out.parameters = G.params;
   const int w = degree + 1;
-  std::vector<double> gb(static_cast<std::size_t>(count) * w);
-  std::vector<int> gfirst(static_cast<std::size_t>(count));
-  std::vector<Point> samples(static_cast<std::size_t>(count));
-  for (int l = 0; l < count; ++l) {
-    samples[l] = old.evaluate(tau[l]);
-    gfirst[l] = eval_basis(degree, count, periodic, g[l], &gb[static_cast<std::size_t>(l) * w]);
-  }
-  std::vector<double> db(n_data * w);
-  std::vector<int> dfirst(n_data);
-  for (std::size_t k = 0; k < n_data; ++k)
-    dfirst[k] = eval_basis(degree, count, periodic, out.parameters[k], &db[k * w]);
+  const auto& gb = G.gb;
+  const auto& gfirst = G.gfirst;
+  const auto& db = G.db;
+  const auto& dfirst = G.dfirst;
 
+  // Samples of the old curve (METHOD.md 4 step 1) at tau_l, placed at the new Greville
+  // abscissae g_l (step 2).
+  std::vector<Point> samples(static_cast<std::size_t>(count));
+  const int wo = old.degree + 1, no = old.count();
+  for (int l = 0; l < count; ++l) {
+    const double* b = &G.sb[static_cast<std::size_t>(l) * wo];
+    Point p = Point::Zero();
+    for (int i = 0; i < wo; ++i) p += b[i] * old.control[wrap_index(G.sfirst[l] + i, no)];
+    samples[l] = p;
+  }
   std::vector<double> weight(n_data, 0.0);
   std::vector<std::size_t> order;
-  detail::BandedLeastSquares lsq(count, w, periodic);
+  std::optional<detail::BandedLeastSquares> lsq;  // only for repairs
   constexpr int kMaxRounds = 8;
+  std::vector<Point> z;
   for (int round = 0;; ++round) {
-    lsq.reset();
-    // Heaviest equations first (Powell and Reid): the weighted data points, then the samples.
-    order.clear();
-    for (std::size_t k = 0; k < n_data; ++k)
-      if (weight[k] > 0) order.push_back(k);
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return weight[a] > weight[b]; });
-    for (std::size_t k : order) lsq.add(dfirst[k], &db[k * w], data[k], weight[k]);
-    for (int l = 0; l < count; ++l)
-      lsq.add(gfirst[l], &gb[static_cast<std::size_t>(l) * w], samples[l]);
-    if (!lsq.solve(out.curve.control)) {
-      out.holds = false;
-      return out;
+    if (round == 0) {
+      // The paper's re-representation: interpolate the samples (a cached factorisation).
+      if (G.singular || !G.interp.replay(samples.data(), out.curve.control, z)) {
+        out.holds = false;
+        return out;
+      }
+    } else {
+      if (lsq) {
+        lsq->reset();
+      } else {
+        lsq.emplace(count, w, periodic);
+      }
+      // Heaviest equations first (Powell and Reid): the weighted data points, then the samples.
+      order.clear();
+      for (std::size_t k = 0; k < n_data; ++k)
+        if (weight[k] > 0) order.push_back(k);
+      std::sort(order.begin(), order.end(),
+                [&](std::size_t a, std::size_t b) { return weight[a] > weight[b]; });
+      for (std::size_t k : order) lsq->add(dfirst[k], &db[k * w], data[k], weight[k]);
+      for (int l = 0; l < count; ++l)
+        lsq->add(gfirst[l], &gb[static_cast<std::size_t>(l) * w], samples[l]);
+      if (!lsq->solve(out.curve.control)) {
+        out.holds = false;
+        return out;
+      }
     }
     // The explicit check of every data point.
     out.max_deviation.setZero();
@@ -79,7 +177,7 @@ Rerepresentation rerepresent(const CurveFit& fit, std::span<const Point> data, i
     const auto& P = out.curve.control;
     for (std::size_t k = 0; k < n_data; ++k) {
       Point c = Point::Zero();
-      for (int i = 0; i < w; ++i) c += db[k * w + i] * P[(dfirst[k] + i) % count];
+      for (int i = 0; i < w; ++i) c += db[k * w + i] * P[wrap_index(dfirst[k] + i, count)];
       const Point d = (c - data[k]).cwiseAbs();
       out.max_deviation = out.max_deviation.cwiseMax(d);
       if (!(d.array() <= bound.array()).all()) {

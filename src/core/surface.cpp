@@ -21,8 +21,8 @@ Point Surface::evaluate(double u, double v) const {
   Point s = Point::Zero();
   for (int a = 0; a <= degree_u; ++a) {
     Point row = Point::Zero();
-    const int i = (fu + a) % count_u;
-    for (int b = 0; b <= degree_v; ++b) row += bv[b] * at(i, (fv + b) % count_v);
+    const int i = wrap_index(fu + a, count_u);
+    for (int b = 0; b <= degree_v; ++b) row += bv[b] * at(i, wrap_index(fv + b, count_v));
     s += bu[a] * row;
   }
   return s;
@@ -36,10 +36,10 @@ void Surface::derivatives(double u, double v, Point out[6]) const {
   const int fv = eval_basis_derivatives(pv, count_v, periodic_v, v, 2, dv.data());
   for (int k = 0; k < 6; ++k) out[k] = Point::Zero();
   for (int a = 0; a <= pu; ++a) {
-    const int i = (fu + a) % count_u;
+    const int i = wrap_index(fu + a, count_u);
     Point c0 = Point::Zero(), c1 = Point::Zero(), c2 = Point::Zero();
     for (int b = 0; b <= pv; ++b) {
-      const Point& P = at(i, (fv + b) % count_v);
+      const Point& P = at(i, wrap_index(fv + b, count_v));
       c0 += dv[b] * P;
       c1 += dv[(pv + 1) + b] * P;
       c2 += dv[2 * (pv + 1) + b] * P;

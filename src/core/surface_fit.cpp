@@ -1,6 +1,7 @@
 #include "sfit/surface_fit.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -157,14 +158,17 @@ StageResult run_stage(std::size_t n_curves, GetPoints&& points_of, int degree, b
     if (shared_params)
       st.shared_parameters =
           paper_parameters(degree, common, periodic, static_cast<int>(max_points));
-    std::vector<char> ok(n_curves, 0);
+    // Stop the pass at the first curve that fails: the count is raised whatever the others
+    // do, so the outcome (the first count at which every curve holds) is the same.
+    std::atomic<bool> failed{false};
     detail::parallel_for(n_curves, threads, [&](std::size_t i) {
+      if (failed.load(std::memory_order_relaxed)) return;
       st.curves[i] = rerepresent(fits[i], points_of(i), degree, common, periodic, bound,
                                  shared_params ? std::span<const double>(st.shared_parameters)
                                                : std::span<const double>());
-      ok[i] = st.curves[i].holds ? 1 : 0;
+      if (!st.curves[i].holds) failed.store(true, std::memory_order_relaxed);
     });
-    if (std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) break;
+    if (!failed.load()) break;
     if (common >= cap)
       throw Error(ErrorCode::kToleranceNotMet,
                   "re-representation cannot hold the tolerance even with " +
