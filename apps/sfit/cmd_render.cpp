@@ -35,7 +35,7 @@ std::string base_name(const std::string& path) {
                      : std::filesystem::path(path).filename().string();
 }
 
-// "WxH" -> (W, H), each 64 ... 8192.
+// "WxH" -> (W, H), each 64 ... 4096.
 std::pair<int, int> parse_size(const std::string& text, const std::string& option, int min) {
   const auto x = text.find_first_of("xX");
   int w = 0, h = 0;
@@ -47,9 +47,9 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& optio
       !number(std::string_view(text).substr(x + 1), h))
     throw Error(ErrorCode::kUsage, "'" + text + "' is not a size WIDTHxHEIGHT, e.g. 640x480",
                 Place{.option = option});
-  if (w < min || h < min || w > 8192 || h > 8192)
+  if (w < min || h < min || w > 4096 || h > 4096)
     throw Error(ErrorCode::kUsage,
-                fmt::format("size {}x{} is out of range {} ... 8192 each way", w, h, min),
+                fmt::format("size {}x{} is out of range {} ... 4096 each way", w, h, min),
                 Place{.option = option}, {static_cast<double>(w), static_cast<double>(h)});
   return {w, h};
 }

@@ -103,8 +103,8 @@ void frame(Image& img, int x0, int y0, int x1, int y1, Rgb c) {
 
 RowPicture render_row(std::span<const Point> points, bool closed, const CurveFit& fit,
                       const Point& bound, const RowPictureOptions& o) {
-  if (o.width < 256 || o.width > 8192 || o.height < 256 || o.height > 8192)
-    throw Error(ErrorCode::kUsage, "picture size must be 256 ... 8192 pixels each way",
+  if (o.width < 256 || o.width > 4096 || o.height < 256 || o.height > 4096)
+    throw Error(ErrorCode::kUsage, "picture size must be 256 ... 4096 pixels each way",
                 Place{.option = "size"},
                 {static_cast<double>(o.width), static_cast<double>(o.height)});
   if (o.supersample < 1 || o.supersample > 4)

@@ -64,9 +64,9 @@ constexpr float kMaxShade = 250.f / 255.f;
 
 void validate(const Scene& sc, const RenderOptions& o) {
   if (!sc.surface) throw Error(ErrorCode::kInternal, "render_surface: no surface");
-  if (o.width < 64 || o.width > 8192) bad("width", "picture width must be 64 ... 8192", o.width);
-  if (o.height < 64 || o.height > 8192)
-    bad("height", "picture height must be 64 ... 8192", o.height);
+  if (o.width < 64 || o.width > 4096) bad("width", "picture width must be 64 ... 4096", o.width);
+  if (o.height < 64 || o.height > 4096)
+    bad("height", "picture height must be 64 ... 4096", o.height);
   if (o.supersample < 1 || o.supersample > 4)
     bad("supersample", "supersampling must be 1 ... 4", o.supersample);
   if (!(o.exaggeration > 0) || !std::isfinite(o.exaggeration))
@@ -164,7 +164,11 @@ RenderResult render_surface(const Scene& sc, const RenderOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   validate(sc, o);
   RenderResult res;
-  const int W = o.width, H = o.height, SS = o.supersample;
+  // Samples cost about 48 bytes each: past some 12 million, fewer samples per pixel.
+  const int W = o.width, H = o.height;
+  const int SS = std::clamp(static_cast<int>(std::sqrt(12e6 / (static_cast<double>(W) * H))), 1,
+                            o.supersample);
+  res.supersample = SS;
 
   // The surface in exaggerated coordinates (B-splines are affine invariant: scaling the
   // control points scales the surface).

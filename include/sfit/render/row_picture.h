@@ -13,7 +13,7 @@
 namespace sfit::render {
 
 struct RowPictureOptions {
-  int width = 960, height = 720;   ///< 256 ... 8192
+  int width = 960, height = 720;   ///< 256 ... 4096
   int supersample = 3;             ///< 1 ... 4
   std::vector<std::string> title;  ///< lines printed at the top (UTF-8)
 };

@@ -31,16 +31,17 @@ const char* to_string(Mode mode);
 
 struct RenderOptions {
   Mode mode = Mode::kShaded;
-  int width = 640, height = 480;  ///< picture size in pixels, 64 ... 8192
+  int width = 640, height = 480;  ///< picture size in pixels, 64 ... 4096
   View view;
-  double exaggeration = 1.0;       ///< scale of the up axis (terrain relief), > 0
-  bool net = false;                ///< control net (hidden parts faint)
-  bool points = false;             ///< data points (needs Scene::rows)
-  bool rows = false;               ///< the surface's v-isocurves at the rows (needs Scene::row_v)
-  int supersample = 3;             ///< samples per pixel in x and y (anti-aliasing), 1 ... 4
-  double stripes = 14;             ///< zebra: stripe pairs across the surface
-  double stripe_angle = NAN;       ///< zebra: the light lines' angle from the vertical in
-                                   ///< degrees, clockwise; NaN: along the surface's long axis
+  double exaggeration = 1.0;  ///< scale of the up axis (terrain relief), > 0
+  bool net = false;           ///< control net (hidden parts faint)
+  bool points = false;        ///< data points (needs Scene::rows)
+  bool rows = false;          ///< the surface's v-isocurves at the rows (needs Scene::row_v)
+  int supersample = 3;        ///< samples per pixel in x and y (anti-aliasing), 1 ... 4; fewer past
+                              ///< 12 million samples (about 48 bytes each)
+  double stripes = 14;        ///< zebra: stripe pairs across the surface
+  double stripe_angle = NAN;  ///< zebra: the light lines' angle from the vertical in
+                              ///< degrees, clockwise; NaN: along the surface's long axis
   double curvature_scale = 0;      ///< colour-bar half range for gauss/mean; 0: automatic
   std::vector<std::string> title;  ///< lines printed at the top (UTF-8)
 };
@@ -67,6 +68,7 @@ struct RenderResult {
   double stripe_angle = 0;  ///< zebra: the light lines' angle used (degrees from vertical)
   long worst_point = -1;    ///< deviation: index in rows.points() of the largest ratio
   double worst_ratio = 0;   ///< its |deviation| / T (per-axis maximum)
+  int supersample = 1;      ///< samples per pixel in x and y used
   double seconds = 0;
 };
 
