@@ -13,6 +13,7 @@
 #include "sfit/error.h"
 #include "sfit/parametrization.h"
 #include "sfit/rerepresent.h"
+#include "surface_fitter.h"
 
 namespace sfit {
 namespace {
@@ -104,54 +105,69 @@ Point relative_tolerance(const Rows& rows, double fraction) {
   return Point::Constant(fraction * bounding_box(rows).diagonal());
 }
 
+namespace detail {
+
 namespace {
 
-struct Attempt {
-  Surface surface;  // centred coordinates
-  std::vector<double> u, v;
-  FitReport report;
-};
+constexpr std::size_t kBlock = 16;  // curves whose searches chain their starting counts
 
-// Fits `curves` points each with fit_curve, then re-represents all on one common count,
-// raising it until every curve holds its points (the guarantee's first half).
-struct StageResult {
+// The minimal fits of curves `todo` (sorted), each starting from its block predecessor's
+// count (or from `hints`). Fixed blocks make the result independent of the thread count.
+// With `previous` (fits of an earlier pass over the same curves), a curve not in `todo`
+// keeps its previous fit unless its predecessor's count changed, in which case it is
+// refitted too, exactly as a full pass would. Returns how many curves were fitted.
+template <class GetPoints>
+std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, const CurveFitOptions& base,
+                       const std::vector<int>& hints, int threads, std::vector<CurveFit>& fits,
+                       const std::vector<char>* todo) {
+  const bool have_hints = hints.size() == n_curves;
+  const std::size_t n_blocks = (n_curves + kBlock - 1) / kBlock;
+  fits.resize(n_curves);
+  std::vector<std::size_t> fitted(n_blocks, 0);
+  // The starting count a fit passes on to the next curve of its block.
+  auto passes_on = [&](const CurveFit& f, int previous) {
+    return f.curve.degree == base.degree && !f.curve.control.empty() ? f.curve.count() : previous;
+  };
+  parallel_for(n_blocks, threads, [&](std::size_t b) {
+    int previous = 0;      // the hint this pass gives the next curve
+    int previous_old = 0;  // the hint the earlier pass gave it
+    for (std::size_t i = b * kBlock; i < std::min(n_curves, (b + 1) * kBlock); ++i) {
+      const bool must = !todo || (*todo)[i] || (!have_hints && previous != previous_old);
+      if (todo) previous_old = passes_on(fits[i], previous_old);
+      if (must) {
+        CurveFitOptions co = base;
+        co.hint = have_hints ? hints[i] : previous;
+        fits[i] = fit_curve(points_of(i), co);
+        ++fitted[b];
+      }
+      previous = passes_on(fits[i], previous);
+    }
+  });
+  std::size_t n = 0;
+  for (std::size_t f : fitted) n += f;
+  return n;
+}
+
+// Re-represents every curve on one common count, starting at max(degree + 1, counts) and
+// raising it until every curve holds (the guarantee's first half). `reuse` (optional) holds
+// earlier re-representations valid at `reuse_count` for curves not marked in `dirty`.
+struct Represented {
   std::vector<Rerepresentation> curves;
-  std::vector<int> counts;
-  int raised = 0;
+  int first_common = 0, common = 0;
   int repaired = 0;
-  long solves = 0;
-  int common = 0;
-  std::vector<double> shared_parameters;  // set when all curves share parameters (columns)
+  std::vector<double> shared_parameters;
 };
 
 template <class GetPoints>
-StageResult run_stage(std::size_t n_curves, GetPoints&& points_of, int degree, bool periodic,
-                      const Point& bound, CountSearch search, int threads, bool shared_params,
-                      std::size_t max_points, const std::vector<int>& hints) {
-  StageResult st;
-  std::vector<CurveFit> fits(n_curves);
-  // Fixed blocks of consecutive curves, each block in order: a curve's search starts from
-  // its predecessor's count (neighbouring rows need similar counts). The blocks do not
-  // depend on the thread count, so neither do the results.
-  constexpr std::size_t kBlock = 16;
-  const bool have_hints = hints.size() == n_curves;
-  const std::size_t n_blocks = (n_curves + kBlock - 1) / kBlock;
-  detail::parallel_for(n_blocks, threads, [&](std::size_t b) {
-    int previous = 0;
-    for (std::size_t i = b * kBlock; i < std::min(n_curves, (b + 1) * kBlock); ++i) {
-      CurveFitOptions co{degree, periodic, bound, search, have_hints ? hints[i] : previous};
-      fits[i] = fit_curve(points_of(i), co);
-      previous = fits[i].curve.degree == degree ? fits[i].curve.count() : previous;
-    }
-  });
-  st.counts.resize(n_curves);
+Represented represent(std::size_t n_curves, GetPoints&& points_of,
+                      const std::vector<CurveFit>& fits, int degree, bool periodic,
+                      const Point& bound, int threads, bool shared_params, std::size_t max_points,
+                      std::vector<Rerepresentation>* reuse, int reuse_count,
+                      const std::vector<char>* dirty) {
+  Represented st;
   int common = degree + 1;
-  for (std::size_t i = 0; i < n_curves; ++i) {
-    st.counts[i] = fits[i].curve.count();
-    st.solves += fits[i].solves;
-    common = std::max(common, st.counts[i]);
-  }
-  const int first_common = common;
+  for (const auto& f : fits) common = std::max(common, f.curve.count());
+  st.first_common = common;
   const int cap = static_cast<int>(std::max<std::size_t>(max_points, common)) + degree + 8;
   st.curves.resize(n_curves);
   while (true) {
@@ -161,14 +177,19 @@ StageResult run_stage(std::size_t n_curves, GetPoints&& points_of, int degree, b
     // Stop the pass at the first curve that fails: the count is raised whatever the others
     // do, so the outcome (the first count at which every curve holds) is the same.
     std::atomic<bool> failed{false};
-    detail::parallel_for(n_curves, threads, [&](std::size_t i) {
+    parallel_for(n_curves, threads, [&](std::size_t i) {
       if (failed.load(std::memory_order_relaxed)) return;
-      st.curves[i] = rerepresent(fits[i], points_of(i), degree, common, periodic, bound,
-                                 shared_params ? std::span<const double>(st.shared_parameters)
-                                               : std::span<const double>());
+      if (reuse && common == reuse_count && !(*dirty)[i]) {
+        st.curves[i] = std::move((*reuse)[i]);
+      } else {
+        st.curves[i] = rerepresent(fits[i], points_of(i), degree, common, periodic, bound,
+                                   shared_params ? std::span<const double>(st.shared_parameters)
+                                                 : std::span<const double>());
+      }
       if (!st.curves[i].holds) failed.store(true, std::memory_order_relaxed);
     });
     if (!failed.load()) break;
+    if (reuse && common == reuse_count) reuse = nullptr;  // moved from: compute afresh
     if (common >= cap)
       throw Error(ErrorCode::kToleranceNotMet,
                   "re-representation cannot hold the tolerance even with " +
@@ -177,26 +198,61 @@ StageResult run_stage(std::size_t n_curves, GetPoints&& points_of, int degree, b
     ++common;
   }
   st.common = common;
-  st.raised = common - first_common;
   for (const auto& c : st.curves) st.repaired += c.repair_rounds > 0 ? 1 : 0;
   return st;
 }
 
-Attempt fit_once(const Rows& rows, const FitOptions& o, const Point& bound, int threads) {
+}  // namespace
+
+struct SurfaceFitter::Attempt {
+  Surface surface;  // centred coordinates
+  std::vector<double> u, v;
+  FitReport report;
+};
+
+void SurfaceFitter::centre(const Rows& rows) {
+  box_ = bounding_box(rows);
+  centre_ = 0.5 * (box_.min + box_.max);
+  centred_ = Rows();
+  centred_.reserve(rows.total_points(), rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    for (const Point& p : rows[j]) centred_.push_point(p - centre_);
+    centred_.end_row();
+  }
+  roundoff_ = kRoundoffRelative * box_.diagonal();
+  threads_ = rows.total_points() < 20000 ? 1 : resolve_threads(o_.threads);
+}
+
+SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
+                                               const std::vector<char>* changed) {
   Attempt at;
+  const Rows& rows = centred_;
   const std::size_t M = rows.size();
   auto report = [&](std::string_view stage, std::size_t done, std::size_t total) {
-    if (o.progress) o.progress(stage, done, total);
+    if (o_.progress) o_.progress(stage, done, total);
   };
   std::size_t longest = 0;
   for (std::size_t j = 0; j < M; ++j) longest = std::max(longest, rows[j].size());
+  auto row_points = [&](std::size_t j) { return rows[j]; };
 
-  // Curve stage on the rows and re-representation on nu (METHOD.md 3-4).
+  // Curve stage on the rows (METHOD.md 3): all rows, or the changed ones and their chains.
   report("rows", 0, M);
-  StageResult rs = run_stage(
-      M, [&](std::size_t j) { return rows[j]; }, o.degree_u, o.closed_u, bound, o.search, threads,
-      false, longest, o.row_count_hints);
+  const CurveFitOptions row_options{o_.degree_u, o_.closed_u, bound, o_.search};
+  std::vector<CurveFit> fits;
+  if (changed) fits = row_fits_;
+  rows_refitted_ =
+      fit_curves(M, row_points, row_options, o_.row_count_hints, threads_, fits, changed);
+  // Rows whose fit changed need a new re-representation.
+  std::vector<char> dirty(M, 1);
+  if (changed)
+    for (std::size_t j = 0; j < M; ++j)
+      dirty[j] = (*changed)[j] || fits[j].curve.control != row_fits_[j].curve.control;
   report("rows", M, M);
+
+  // Re-representation on the common count nu (METHOD.md 4).
+  Represented rs =
+      represent(M, row_points, fits, o_.degree_u, o_.closed_u, bound, threads_, false, longest,
+                changed ? &row_curves_ : nullptr, row_common_, changed ? &dirty : nullptr);
   const int nu = rs.common;
 
   // Transverse stage: column i holds control point i of every row curve (METHOD.md 5).
@@ -204,19 +260,24 @@ Attempt fit_once(const Rows& rows, const FitOptions& o, const Point& bound, int 
   for (std::size_t j = 0; j < M; ++j)
     for (int i = 0; i < nu; ++i)
       columns[static_cast<std::size_t>(i) * M + j] = rs.curves[j].curve.control[i];
+  auto column_points = [&](std::size_t i) {
+    return std::span<const Point>(columns.data() + i * M, M);
+  };
   report("columns", 0, static_cast<std::size_t>(nu));
-  StageResult cs = run_stage(
-      static_cast<std::size_t>(nu),
-      [&](std::size_t i) { return std::span<const Point>(columns.data() + i * M, M); }, o.degree_v,
-      o.closed_v, bound, o.search, threads, true, M, o.column_count_hints);
+  const CurveFitOptions column_options{o_.degree_v, o_.closed_v, bound, o_.search};
+  std::vector<CurveFit> column_fits;
+  fit_curves(static_cast<std::size_t>(nu), column_points, column_options, o_.column_count_hints,
+             threads_, column_fits, nullptr);
+  Represented cs = represent(static_cast<std::size_t>(nu), column_points, column_fits, o_.degree_v,
+                             o_.closed_v, bound, threads_, true, M, nullptr, 0, nullptr);
   report("columns", static_cast<std::size_t>(nu), static_cast<std::size_t>(nu));
   const int nv = cs.common;
 
   Surface& s = at.surface;
-  s.degree_u = o.degree_u;
-  s.degree_v = o.degree_v;
-  s.periodic_u = o.closed_u;
-  s.periodic_v = o.closed_v;
+  s.degree_u = o_.degree_u;
+  s.degree_v = o_.degree_v;
+  s.periodic_u = o_.closed_u;
+  s.periodic_v = o_.closed_v;
   s.count_u = nu;
   s.count_v = nv;
   s.control.resize(static_cast<std::size_t>(nu) * nv);
@@ -230,61 +291,41 @@ Attempt fit_once(const Rows& rows, const FitOptions& o, const Point& bound, int 
               at.u.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[j]));
 
   FitReport& r = at.report;
-  r.row_counts = std::move(rs.counts);
-  r.column_counts = std::move(cs.counts);
-  r.raised_u = rs.raised;
-  r.raised_v = cs.raised;
+  r.row_counts.resize(M);
+  r.solves = 0;
+  for (std::size_t j = 0; j < M; ++j) {
+    r.row_counts[j] = fits[j].curve.count();
+    r.solves += fits[j].solves;
+  }
+  r.column_counts.resize(static_cast<std::size_t>(nu));
+  for (int i = 0; i < nu; ++i) {
+    r.column_counts[i] = column_fits[i].curve.count();
+    r.solves += column_fits[i].solves;
+  }
+  r.raised_u = rs.common - rs.first_common;
+  r.raised_v = cs.common - cs.first_common;
   r.repaired_rows = rs.repaired;
   r.repaired_columns = cs.repaired;
-  r.solves = rs.solves + cs.solves;
+
+  // Keep the row stage for update(): fits, and re-representations at nu.
+  row_fits_ = std::move(fits);
+  row_curves_ = rs.curves;
+  row_common_ = nu;
   return at;
 }
 
-}  // namespace
-
-FitResult fit_surface(const Rows& rows, const FitOptions& o) {
-  const auto t0 = std::chrono::steady_clock::now();
-  validate(rows, o);
-  const int threads = rows.total_points() < 20000 ? 1 : detail::resolve_threads(o.threads);
-
-  // Work on coordinates centred on the bounding box.
-  const BoundingBox box = bounding_box(rows);
-  const Point centre = 0.5 * (box.min + box.max);
-  Rows centred;
-  centred.reserve(rows.total_points(), rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    for (const Point& p : rows[j]) centred.push_point(p - centre);
-    centred.end_row();
-  }
-  const double roundoff = kRoundoffRelative * box.diagonal();
-
-  Attempt at;
-  int tightenings = 0;
-  DeviationCheck check;
-  for (double shrink = 1.0;; shrink *= 0.5) {
-    // Stage budget: T/2 with a relative margin so T/2 + T/2 stays <= T after rounding;
-    // at T = 0 the round-off allowance.
-    Point bound;
-    for (int a = 0; a < 3; ++a)
-      bound[a] = o.tolerance[a] > 0
-                     ? std::max(0.5 * o.tolerance[a] * (1 - 1e-9) * shrink, 0.5 * roundoff)
-                     : 0.5 * roundoff;
-    at = fit_once(centred, o, bound, threads);
-    check = check_deviation(at.surface, centred, at.u, at.v, o.tolerance, roundoff);
-    if (check.within || tightenings == 3) break;
-    ++tightenings;
-  }
-
+FitResult SurfaceFitter::finish(Attempt& at, int tightenings, const DeviationCheck& check,
+                                double seconds_start) const {
   FitResult out;
   out.surface = std::move(at.surface);
-  for (Point& p : out.surface.control) p += centre;
+  for (Point& p : out.surface.control) p += centre_;
   out.u = std::move(at.u);
   out.v = std::move(at.v);
   FitReport& r = out.report;
   r = std::move(at.report);
-  r.points = rows.total_points();
-  r.rows = rows.size();
-  r.tolerance = o.tolerance;
+  r.points = centred_.total_points();
+  r.rows = centred_.size();
+  r.tolerance = o_.tolerance;
   r.max_deviation = check.max_deviation;
   r.worst_row = check.worst_row;
   r.worst_index = check.worst_index;
@@ -292,14 +333,85 @@ FitResult fit_surface(const Rows& rows, const FitOptions& o) {
   r.within_tolerance = check.within;
   r.count_u = out.surface.count_u;
   r.count_v = out.surface.count_v;
-  r.degree_u = o.degree_u;
-  r.degree_v = o.degree_v;
-  r.closed_u = o.closed_u;
-  r.closed_v = o.closed_v;
+  r.degree_u = o_.degree_u;
+  r.degree_v = o_.degree_v;
+  r.closed_u = o_.closed_u;
+  r.closed_v = o_.closed_v;
   r.tightenings = tightenings;
-  r.roundoff = roundoff;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.roundoff = roundoff_;
+  r.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() -
+      seconds_start;
   return out;
+}
+
+namespace {
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+FitResult SurfaceFitter::fit(const Rows& rows) {
+  const double t0 = now();
+  validate(rows, o_);
+  centre(rows);
+  Attempt at;
+  int tightenings = 0;
+  DeviationCheck check;
+  valid_ = false;
+  for (double shrink = 1.0;; shrink *= 0.5) {
+    // Stage budget: T/2 with a relative margin so T/2 + T/2 stays <= T after rounding;
+    // at T = 0 the round-off allowance.
+    Point bound;
+    for (int a = 0; a < 3; ++a)
+      bound[a] = o_.tolerance[a] > 0
+                     ? std::max(0.5 * o_.tolerance[a] * (1 - 1e-9) * shrink, 0.5 * roundoff_)
+                     : 0.5 * roundoff_;
+    at = fit_once(bound, nullptr);
+    if (tightenings == 0) {
+      bound_ = bound;
+      valid_ = true;
+    } else {
+      valid_ = false;  // the kept state is not the first attempt's
+    }
+    check = check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_);
+    if (check.within || tightenings == 3) break;
+    ++tightenings;
+  }
+  return finish(at, tightenings, check, t0);
+}
+
+FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>& changed) {
+  const double t0 = now();
+  validate(rows, o_);
+  const BoundingBox box = bounding_box(rows);
+  if (!valid_ || rows.size() != centred_.size() || box.min != box_.min || box.max != box_.max)
+    return fit(rows);
+  // Same box, so the same centre, round-off allowance and budget: refresh the edited rows.
+  std::vector<char> mark(rows.size(), 0);
+  Rows centred;
+  centred.reserve(rows.total_points(), rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    for (const Point& p : rows[j]) centred.push_point(p - centre_);
+    centred.end_row();
+  }
+  for (std::size_t j : changed) mark.at(j) = 1;
+  valid_ = false;  // until the update completes
+  centred_ = std::move(centred);
+  threads_ = rows.total_points() < 20000 ? 1 : resolve_threads(o_.threads);
+  Attempt at = fit_once(bound_, &mark);
+  const DeviationCheck check =
+      check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_);
+  if (!check.within) return fit(rows);  // fit() would tighten: do exactly that
+  valid_ = true;
+  return finish(at, 0, check, t0);
+}
+
+}  // namespace detail
+
+FitResult fit_surface(const Rows& rows, const FitOptions& o) {
+  detail::SurfaceFitter fitter(o);
+  return fitter.fit(rows);
 }
 
 }  // namespace sfit

@@ -1,0 +1,80 @@
+#include "sfit/incremental.h"
+
+#include <string>
+
+#include "sfit/error.h"
+#include "surface_fitter.h"
+
+namespace sfit {
+namespace {
+
+[[noreturn]] void bad_place(const std::string& what, std::size_t row, std::size_t index) {
+  throw Error(ErrorCode::kUsage, what,
+              Place{.row = static_cast<long>(row), .point = static_cast<long>(index)});
+}
+
+// A copy of `rows` with row `row` replaced by `points`.
+Rows with_row(const Rows& rows, std::size_t row, std::span<const Point> points) {
+  Rows out;
+  out.reserve(rows.total_points() + points.size(), rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    for (const Point& p : j == row ? points : rows[j]) out.push_point(p);
+    out.end_row();
+  }
+  return out;
+}
+
+}  // namespace
+
+IncrementalFit::IncrementalFit(Rows rows, FitOptions options)
+    : rows_(std::move(rows)), fitter_(std::make_unique<detail::SurfaceFitter>(std::move(options))) {
+  result_ = fitter_->fit(rows_);
+}
+
+IncrementalFit::~IncrementalFit() = default;
+IncrementalFit::IncrementalFit(IncrementalFit&&) noexcept = default;
+IncrementalFit& IncrementalFit::operator=(IncrementalFit&&) noexcept = default;
+
+std::size_t IncrementalFit::rows_refitted() const {
+  return fitter_->rows_refitted();
+}
+
+const FitResult& IncrementalFit::apply(Rows edited, std::size_t row) {
+  FitResult r = fitter_->update(edited, {row});  // throws before touching the state
+  rows_ = std::move(edited);
+  result_ = std::move(r);
+  return result_;
+}
+
+const FitResult& IncrementalFit::move_point(std::size_t row, std::size_t index, const Point& to) {
+  if (row >= rows_.size() || index >= rows_[row].size())
+    bad_place("no such point to move", row, index);
+  std::vector<Point> points(rows_[row].begin(), rows_[row].end());
+  points[index] = to;
+  return apply(with_row(rows_, row, points), row);
+}
+
+const FitResult& IncrementalFit::insert_point(std::size_t row, std::size_t index, const Point& p) {
+  if (row >= rows_.size() || index > rows_[row].size())
+    bad_place("no such place to insert a point", row, index);
+  std::vector<Point> points(rows_[row].begin(), rows_[row].end());
+  points.insert(points.begin() + static_cast<std::ptrdiff_t>(index), p);
+  return apply(with_row(rows_, row, points), row);
+}
+
+const FitResult& IncrementalFit::erase_point(std::size_t row, std::size_t index) {
+  if (row >= rows_.size() || index >= rows_[row].size())
+    bad_place("no such point to delete", row, index);
+  if (rows_[row].size() == 1) bad_place("a row keeps at least one point", row, index);
+  std::vector<Point> points(rows_[row].begin(), rows_[row].end());
+  points.erase(points.begin() + static_cast<std::ptrdiff_t>(index));
+  return apply(with_row(rows_, row, points), row);
+}
+
+const FitResult& IncrementalFit::replace_row(std::size_t row, std::span<const Point> points) {
+  if (row >= rows_.size()) bad_place("no such row to replace", row, 0);
+  if (points.empty()) bad_place("a row keeps at least one point", row, 0);
+  return apply(with_row(rows_, row, points), row);
+}
+
+}  // namespace sfit

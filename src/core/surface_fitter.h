@@ -1,0 +1,49 @@
+// The stages of fit_surface() as a state that can be updated after edits of some rows
+// (METHOD.md 7.7). Private: the public faces are fit_surface() and IncrementalFit.
+#pragma once
+
+#include <vector>
+
+#include "sfit/rerepresent.h"
+#include "sfit/surface_fit.h"
+
+namespace sfit::detail {
+
+class SurfaceFitter {
+ public:
+  explicit SurfaceFitter(FitOptions options) : o_(std::move(options)) {}
+
+  /// The whole method on `rows` (fit_surface()).
+  FitResult fit(const Rows& rows);
+  /// The same result as fit(rows) after the rows in `changed` were edited (the number of rows
+  /// unchanged), refitting only what the edit touches: the edited rows, later rows of their
+  /// block whose starting count changed, and their re-representations; the transverse stage
+  /// and the check are redone as fit() does them. Falls back to fit() where reuse is not
+  /// exact: a changed bounding box (the centring changes), a tightened budget, no state.
+  FitResult update(const Rows& rows, const std::vector<std::size_t>& changed);
+  /// Rows refitted by the last fit() or update().
+  std::size_t rows_refitted() const { return rows_refitted_; }
+
+ private:
+  struct Attempt;
+  Attempt fit_once(const Point& bound, const std::vector<char>* changed);
+  FitResult finish(Attempt& at, int tightenings, const struct DeviationCheck& check,
+                   double seconds_start) const;
+  void centre(const Rows& rows);
+
+  FitOptions o_;
+  int threads_ = 1;
+  BoundingBox box_;
+  Point centre_ = Point::Zero();
+  double roundoff_ = 0;
+  Rows centred_;
+  // State of the first (untightened) attempt of the last fit, reused by update().
+  bool valid_ = false;
+  Point bound_ = Point::Zero();
+  std::vector<CurveFit> row_fits_;
+  std::vector<Rerepresentation> row_curves_;
+  int row_common_ = 0;
+  std::size_t rows_refitted_ = 0;
+};
+
+}  // namespace sfit::detail

@@ -1,0 +1,112 @@
+#include "sfit/incremental.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "sfit/error.h"
+#include "test_support.h"
+
+namespace sfit {
+namespace {
+
+Point wavy(double s, double t) {
+  return Point(20 * s, 12 * t, std::sin(5 * s) * std::cos(3 * t) + 0.5 * s * t);
+}
+
+// The incremental result must be fit_surface()'s, bit for bit.
+void expect_same_as_full_fit(const IncrementalFit& inc, const FitOptions& o) {
+  const FitResult full = fit_surface(inc.rows(), o);
+  const FitResult& r = inc.result();
+  ASSERT_EQ(r.surface.count_u, full.surface.count_u);
+  ASSERT_EQ(r.surface.count_v, full.surface.count_v);
+  EXPECT_EQ(0, std::memcmp(r.surface.control.data(), full.surface.control.data(),
+                           full.surface.control.size() * sizeof(Point)));
+  EXPECT_EQ(r.u, full.u);
+  EXPECT_EQ(r.v, full.v);
+  EXPECT_EQ(r.report.row_counts, full.report.row_counts);
+  EXPECT_EQ(r.report.column_counts, full.report.column_counts);
+  EXPECT_EQ(r.report.max_deviation, full.report.max_deviation);
+  EXPECT_EQ(r.report.within_tolerance, full.report.within_tolerance);
+  EXPECT_TRUE(r.report.within_tolerance);
+}
+
+TEST(IncrementalFit, RandomEditsGiveExactlyTheFullRefit) {
+  for (bool closed : {false, true}) {
+    const Rows rows =
+        test::sample_rows(wavy, {30, 34, 28, 40, 31, 36, 29, 33, 30, 35}, closed, false);
+    FitOptions o;
+    o.closed_u = closed;
+    o.tolerance = relative_tolerance(rows, 1e-3);
+    IncrementalFit inc(rows, o);
+    std::mt19937 rng(7);
+    for (int edit = 0; edit < 40; ++edit) {
+      const std::size_t j = rng() % inc.rows().size();
+      const std::size_t n = inc.rows()[j].size();
+      const std::size_t k = 1 + rng() % (n - 2);  // interior: keeps the bounding box mostly
+      const Point p = inc.rows()[j][k];
+      SCOPED_TRACE("closed " + std::to_string(closed) + " edit " + std::to_string(edit));
+      switch (edit % 4) {
+        case 0:
+          inc.move_point(j, k, p + Point(0.01, -0.02, 0.05));
+          break;
+        case 1:
+          inc.insert_point(j, k, 0.5 * (p + inc.rows()[j][k - 1]));
+          break;
+        case 2:
+          inc.erase_point(j, k);
+          break;
+        case 3: {
+          std::vector<Point> row(inc.rows()[j].begin(), inc.rows()[j].end());
+          for (Point& q : row) q.z() += 0.01;
+          inc.replace_row(j, row);
+          break;
+        }
+      }
+      expect_same_as_full_fit(inc, o);
+      if (HasFailure()) return;
+    }
+  }
+}
+
+TEST(IncrementalFit, MovingOnePointRefitsFewRows) {
+  const Rows rows = test::sample_rows(wavy, std::vector<int>(40, 30));
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, 1e-3);
+  IncrementalFit inc(rows, o);
+  EXPECT_EQ(inc.rows_refitted(), 40u);
+  inc.move_point(20, 15, inc.rows()[20][15] + Point(0, 0, 0.02));
+  EXPECT_GE(inc.rows_refitted(), 1u);
+  EXPECT_LE(inc.rows_refitted(), 16u);  // at most the rest of its block
+  expect_same_as_full_fit(inc, o);
+}
+
+TEST(IncrementalFit, EditThatGrowsTheBoxStillMatches) {
+  const Rows rows = test::sample_rows(wavy, std::vector<int>(8, 20));
+  FitOptions o;
+  o.tolerance = Point::Constant(0.01);
+  IncrementalFit inc(rows, o);
+  inc.move_point(3, 10, Point(10, 5, 40));  // far above everything: a new box, a full fit
+  EXPECT_EQ(inc.rows_refitted(), 8u);
+  expect_same_as_full_fit(inc, o);
+}
+
+TEST(IncrementalFit, BadEditsThrowAndKeepTheState) {
+  const Rows rows = test::sample_rows(wavy, std::vector<int>(5, 10));
+  FitOptions o;
+  o.tolerance = Point::Constant(0.01);
+  IncrementalFit inc(rows, o);
+  const auto before = inc.result().surface.control;
+  EXPECT_THROW(inc.move_point(9, 0, Point::Zero()), Error);
+  EXPECT_THROW(inc.erase_point(0, 10), Error);
+  EXPECT_THROW(inc.move_point(1, 2, Point(std::nan(""), 0, 0)), Error);
+  EXPECT_EQ(inc.rows()[1][2], rows[1][2]);
+  EXPECT_EQ(inc.result().surface.control, before);
+  inc.move_point(1, 2, rows[1][2] + Point(0, 0, 0.001));  // still works afterwards
+  expect_same_as_full_fit(inc, o);
+}
+
+}  // namespace
+}  // namespace sfit
