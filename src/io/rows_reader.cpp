@@ -1,6 +1,7 @@
 #include "sfit/io/rows_reader.h"
 
 #include <sys/stat.h>
+#include <array>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -13,6 +14,15 @@
 
 namespace sfit::io {
 namespace {
+
+// Spaces, tabs, commas and the other ASCII blanks separate numbers; '#' starts a comment.
+enum CharClass : unsigned char { kToken, kSeparator, kComment };
+constexpr auto kClass = [] {
+  std::array<CharClass, 256> t{};
+  for (unsigned char c : {' ', '\t', ',', '\r', '\f', '\v'}) t[c] = kSeparator;
+  t[static_cast<unsigned char>('#')] = kComment;
+  return t;
+}();
 
 // Incremental parser: feed() whole lines; finish() closes the last row.
 class Parser {
@@ -33,20 +43,21 @@ class Parser {
     int n = 0;
     std::size_t i = 0;
     bool comment = false;
-    while (i < s.size()) {
-      const char c = s[i];
-      if (c == ' ' || c == '\t' || c == ',' || c == '\r' || c == '\f' || c == '\v') {
+    // One pass with a character-class table (this loop runs for every byte of the input).
+    const std::size_t size = s.size();
+    const char* data = s.data();
+    while (i < size) {
+      const CharClass c = kClass[static_cast<unsigned char>(data[i])];
+      if (c == kSeparator) {
         ++i;
         continue;
       }
-      if (c == '#') {
+      if (c == kComment) {
         comment = true;
         break;
       }
-      std::size_t e = i;
-      while (e < s.size() && s[e] != ' ' && s[e] != '\t' && s[e] != ',' && s[e] != '#' &&
-             s[e] != '\r')
-        ++e;
+      std::size_t e = i + 1;
+      while (e < size && kClass[static_cast<unsigned char>(data[e])] == kToken) ++e;
       const std::string_view tok = s.substr(i, e - i);
       if (n == 3)
         fail(ErrorCode::kInputSyntax, i, "more than 3 numbers on a line: '" + show(tok) + "'");
