@@ -7,6 +7,7 @@
 
 #include "sfit/error.h"
 #include "sfit/io/csv_reader.h"
+#include "sfit/io/rows_binary.h"
 #include "sfit/io/rows_reader.h"
 #ifdef SFIT_HAVE_EXCHANGE
 #include "sfit/exchange/readers.h"
@@ -62,6 +63,10 @@ Input read_input(const std::string& path) {
     return Input{std::move(r.rows), std::move(r.first_line), path};
   }
 #endif
+  if (io::is_binary_rows_path(path)) {
+    auto r = io::read_rows_binary(path);
+    return Input{std::move(r.rows), std::move(r.first_line), std::move(r.name)};
+  }
   auto r = io::read_rows(path);
   return Input{std::move(r.rows), std::move(r.first_line), std::move(r.name)};
 }

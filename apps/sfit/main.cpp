@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   sfit::cli::Runner run;
   sfit::cli::add_fit_command(app, run);
   sfit::cli::add_convert_command(app, run);
+  sfit::cli::add_pack_command(app, run);
 #ifdef SFIT_HAVE_RENDER
   sfit::cli::add_render_commands(app, run);
 #endif
