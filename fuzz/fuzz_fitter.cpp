@@ -4,9 +4,10 @@
 //   byte 2: bit 0 closed rows, bit 1 closed row sequence, bit 2 linear count search,
 //           bits 3-7 the tolerance: 0 -> T = 0, 1..28 -> 10^(2 - k/3) of the diagonal,
 //           29..31 -> per axis (1e-2, 0, 1e-1) of the diagonal rotated by k.
-// A fit must either throw Error(kInputData) with one line, or return a finite surface whose
-// report is true: every point evaluated independently lies within the tolerance it claims.
-// SFIT_FUZZ_STRICT=1 also makes a fit that misses its tolerance (CLI exit 7) a finding.
+// A fit must either throw Error(kInputData or kToleranceNotMet) with one line, or return a
+// finite surface whose report is true: every point evaluated independently lies within the
+// tolerance it claims. SFIT_FUZZ_STRICT=1 also makes a fit that misses its tolerance (CLI
+// exit 7, thrown or reported) a finding.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -55,17 +56,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   if (!o.tolerance.allFinite()) return 0;  // validate() rejects such data before the tolerance
 
+  static const bool strict = std::getenv("SFIT_FUZZ_STRICT") != nullptr;
   FitResult r;
   try {
     r = fit_surface(rows, o);
   } catch (const Error& e) {
-    fuzz::check_error(e, ErrorCode::kInputData);
+    // kToleranceNotMet: the guarantee gave up (CLI exit 7, nothing written); a proper answer.
+    fuzz::check_error(e, ErrorCode::kInputData, ErrorCode::kToleranceNotMet);
+    if (strict && e.code() == ErrorCode::kToleranceNotMet)
+      fuzz::finding("tolerance not met (strict mode)");
     return 0;
   }
   const Surface& s = r.surface;
   if (s.control.size() != static_cast<std::size_t>(s.count_u) * s.count_v)
     fuzz::finding("control array does not match the counts");
-  if (s.count_u < (o.closed_u ? 1 : o.degree_u + 1) || s.count_v < (o.closed_v ? 1 : o.degree_v + 1))
+  if (s.count_u < (o.closed_u ? 1 : o.degree_u + 1) ||
+      s.count_v < (o.closed_v ? 1 : o.degree_v + 1))
     fuzz::finding("fewer control points than an order");
   for (const Point& p : s.control)
     if (!p.allFinite()) fuzz::finding("a non-finite control point");
@@ -92,7 +98,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (r.report.within_tolerance && worst[a] > o.tolerance[a] + r.report.roundoff + slack)
       fuzz::finding("report says within tolerance but a point is not");
   }
-  static const bool strict = std::getenv("SFIT_FUZZ_STRICT") != nullptr;
   if (strict && !r.report.within_tolerance) fuzz::finding("tolerance not met (strict mode)");
   return 0;
 }

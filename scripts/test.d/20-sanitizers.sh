@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# CI stage: the whole test suite again, built with AddressSanitizer + UndefinedBehaviorSanitizer
+# (preset 'asan': GCC, -O1 -g1 with assertions on, -fno-sanitize-recover=undefined), so any
+# memory error, leak, failed assertion or undefined behaviour fails a test.
+# Build folder: ASAN_BUILD_DIR (default build-asan).
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/../.."
+start=$(date +%s)
+jobs=$(nproc)
+dir="${ASAN_BUILD_DIR:-build-asan}"
+cmake --preset asan -B "$dir" >/dev/null
+cmake --build "$dir" -j "$jobs"
+built=$(date +%s)
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+if [ -f scripts/sanitizers/lsan.supp ]; then
+  export LSAN_OPTIONS="suppressions=$PWD/scripts/sanitizers/lsan.supp:print_suppressions=0"
+fi
+ctest --test-dir "$dir" --output-on-failure -j "$jobs"
+echo "sanitizers: build $((built - start)) s, tests $(($(date +%s) - built)) s"
