@@ -119,8 +119,14 @@ def main():
     ap.add_argument("--repeats", type=int, default=11)
     ap.add_argument("--budget", type=float, default=10.0, help="stop repeating after this long")
     ap.add_argument("--only", default="", help="comma-separated data set names to run")
+    ap.add_argument("--tables-from", default="", help="only remake the tables and the plot "
+                    "from an earlier results.json")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
+    if args.tables_from:
+        with open(args.tables_from) as f:
+            write_outputs(json.load(f)["results"], args.out)
+        return
     data_dir = os.path.join(args.out, "data")
 
     cases = []  # (name, path, kind, closed, [(tol label, tol)], series, n)
@@ -201,11 +207,17 @@ def main():
                     json.dump({"machine": machine(), "args": vars(args), "results": results}, f,
                               indent=1)
 
+    write_outputs(results, args.out)
+
+
+def write_outputs(results, out):
     table = make_table(results) + "\n" + make_targets(results)
-    with open(os.path.join(args.out, "table.md"), "w") as f:
+    with open(os.path.join(out, "table.md"), "w") as f:
         f.write(table)
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write(make_compact(results) + "\n" + make_targets(results))
     print(table)
-    plot(results, os.path.join(args.out, "time_vs_points.png"))
+    plot(results, os.path.join(out, "time_vs_points.png"))
 
 
 def machine():
@@ -241,6 +253,39 @@ def make_table(results):
             out.append(head + f" {fmt_time(r['median_s'])} ({len(r['times'])}){note} | "
                        f"{r['coefficients']} ({r['shape']}) | {c.get('max_distance', float('nan')):.3g} | "
                        f"{c.get('out_of_tolerance', '?')} | {ratio} |")
+    return "\n".join(out) + "\n"
+
+
+def make_compact(results):
+    """One line per data set and tolerance, one column per tool: time, coefficients, max
+    closest distance, points out of tolerance."""
+    cols = ["sfit", "scipy-grid", "sisl-grid", "occt-grid", "occt-loft"]
+    names = {"sfit": "sfit (1 thread)", "scipy-grid": "SciPy", "sisl-grid": "SISL",
+             "occt-grid": "OCCT grid", "occt-loft": "OCCT loft"}
+    by_case = {}
+    for r in results:
+        by_case.setdefault((r["set"], r["tol_label"]), {})[r["peer"]] = r
+    out = ["| data set | points | T | " + " | ".join(names[c] for c in cols) + " |",
+           "|---|---|---|" + "---|" * len(cols)]
+    for (name, tl), rs in by_case.items():
+        any_r = next(iter(rs.values()))
+        cells = []
+        for c in cols:
+            r = rs.get(c)
+            if r is None:
+                cells.append("n/a")
+            elif "median_s" not in r:
+                why = r.get("skipped") or r.get("error") or ""
+                cells.append("skipped" if why.startswith("skipped") else
+                             "failed" if why else "")
+            else:
+                k = r.get("check", {})
+                cells.append(f"{fmt_time(r['median_s'])} · {r['coefficients']} · "
+                             f"{k.get('max_distance', float('nan')):.3g} · "
+                             f"{k.get('out_of_tolerance', '?')}")
+        closed = " (closed)" if any_r["closed_u"] else ""
+        out.append(f"| {name}{closed} | {any_r['points']} | {tl} ({any_r['tol']:.3g}) | "
+                   + " | ".join(cells) + " |")
     return "\n".join(out) + "\n"
 
 
