@@ -284,7 +284,7 @@ int run_render_rows(const RowArgs& a) {
              fmt::format("curve stage: degree {}, {} control points, bound T/2 = {} per axis "
                          "(T = {}); band = curve \xC2\xB1 bound",
                          fit.curve.degree, fit.curve.count(), vec(bound), vec(tol))};
-  const render::RowPicture pic = render::render_row(row, closed, fit, bound, o);
+  const render::RowPicture pic = render::render_row(row, fit, bound, o);
   say(fmt::format("row {}: {} points, {} control points (degree {}), max |d|/(T/2) {} at point {}",
                   a.row, row.size(), fit.curve.count(), fit.curve.degree, g(pic.worst_ratio),
                   pic.worst_index));

@@ -101,8 +101,8 @@ void frame(Image& img, int x0, int y0, int x1, int y1, Rgb c) {
 
 }  // namespace
 
-RowPicture render_row(std::span<const Point> points, bool closed, const CurveFit& fit,
-                      const Point& bound, const RowPictureOptions& o) {
+RowPicture render_row(std::span<const Point> points, const CurveFit& fit, const Point& bound,
+                      const RowPictureOptions& o) {
   if (o.width < 256 || o.width > 4096 || o.height < 256 || o.height > 4096)
     throw Error(ErrorCode::kUsage, "picture size must be 256 ... 4096 pixels each way",
                 Place{.option = "size"},
@@ -121,7 +121,6 @@ RowPicture render_row(std::span<const Point> points, bool closed, const CurveFit
   const double end = c.domain_end();
   const int n_samples = std::max(400, 16 * c.count());
   for (int i = 0; i <= n_samples; ++i) d.curve_samples.push_back(c.evaluate(end * i / n_samples));
-  (void)closed;
 
   // Per-point deviations and the worst point.
   const bool zero_bound = !(bound.minCoeff() > 0);

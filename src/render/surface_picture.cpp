@@ -100,7 +100,7 @@ std::string fmt_g(double x, int digits = 3) {
 }
 
 struct Lights {
-  Vector3d key, fill, half;
+  Vector3d key, fill;
 };
 
 // Surface geometry at a sample: the exact derivatives there.
@@ -284,8 +284,7 @@ RenderResult render_surface(const Scene& sc, const RenderOptions& o) {
   // A key light above left of the eye and a weaker fill light below right: every face that
   // looks at the viewer is lit.
   const Lights lights{(-0.30 * cam.right + 0.40 * cam.up + 0.87 * cam.toward).normalized(),
-                      (0.55 * cam.right - 0.25 * cam.up + 0.80 * cam.toward).normalized(),
-                      Vector3d::Zero()};
+                      (0.55 * cam.right - 0.25 * cam.up + 0.80 * cam.toward).normalized()};
   const Vector3d half = (lights.key + cam.toward).normalized();
   const std::size_t NS = g.depth.size();
   std::vector<Vector3f> normal(NS, Vector3f::Zero());  // facing the viewer

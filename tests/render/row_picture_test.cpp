@@ -37,7 +37,7 @@ TEST(RowPicture, BandIsTheCurveSweptByTheBoundBox) {
   o.width = 640;
   o.height = 480;
   o.supersample = 2;
-  const render::RowPicture pic = render::render_row(pts, false, fit, bound, o);
+  const render::RowPicture pic = render::render_row(pts, fit, bound, o);
   dump(pic.image, "row_band");
   const render::RowPanel& front = pic.panels[1];  // x across, z up
   ASSERT_EQ(front.axis_a, 0);
@@ -92,7 +92,7 @@ TEST(RowPicture, WorstPointAndDeviationPlot) {
   o.width = 640;
   o.height = 480;
   o.supersample = 2;
-  const render::RowPicture pic = render::render_row(pts, false, fit, bound, o);
+  const render::RowPicture pic = render::render_row(pts, fit, bound, o);
   EXPECT_NEAR(pic.worst_ratio, want, 1e-12);
   EXPECT_EQ(pic.worst_index, want_j);
   EXPECT_LE(pic.worst_ratio, 1.0);
@@ -123,7 +123,7 @@ TEST(RowPicture, ClosedRowAndRejectedSizes) {
   o.width = 400;
   o.height = 300;
   o.supersample = 1;
-  const render::RowPicture pic = render::render_row(ring, true, fit, bound, o);
+  const render::RowPicture pic = render::render_row(ring, fit, bound, o);
   dump(pic.image, "row_ring");
   EXPECT_EQ(pic.image.width, 400);
   // The top view shows the closed ring: its centre is empty, its outline drawn all round.
@@ -136,7 +136,7 @@ TEST(RowPicture, ClosedRowAndRejectedSizes) {
     EXPECT_FALSE(is_background(px)) << k;
   }
   o.width = 100;
-  EXPECT_THROW(render::render_row(ring, true, fit, bound, o), Error);
+  EXPECT_THROW(render::render_row(ring, fit, bound, o), Error);
 }
 
 }  // namespace

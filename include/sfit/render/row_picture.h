@@ -37,10 +37,11 @@ struct RowPicture {
 /// Draws `points` (one row, in order), the curve of `fit` (fitted to them) and, around it, the
 /// band in which a point may lie: the curve swept by the box of +-bound per axis, as seen in
 /// each projection. The fourth panel plots (C(t_j) - D_j)_a / bound_a for each axis a against
-/// the point index j, with the lines +-1 (absolute deviations where a bound is 0).
+/// the point index j, with the lines +-1 (absolute deviations where a bound is 0). A periodic
+/// curve (a closed row) is drawn closed.
 /// Throws Error(kUsage) for a size out of range and Error(kInternal) if `fit` does not belong
 /// to `points`.
-RowPicture render_row(std::span<const Point> points, bool closed, const CurveFit& fit,
-                      const Point& bound, const RowPictureOptions& options);
+RowPicture render_row(std::span<const Point> points, const CurveFit& fit, const Point& bound,
+                      const RowPictureOptions& options);
 
 }  // namespace sfit::render
