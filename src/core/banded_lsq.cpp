@@ -135,7 +135,11 @@ bool BandedLeastSquares::back_substitute(const std::vector<Point>& z, std::vecto
   for (int a = 0; a < tail_; ++a) maxpiv = std::max(maxpiv, std::abs(tri_[a * tail_ + a]));
   const double tiny = maxpiv * 1e-14;
   if (!(maxpiv > 0.0)) return false;
-  std::vector<Point> sol(static_cast<std::size_t>(n_), Point::Zero());
+  // Without a tail the solution's order is the unknowns' order: solve straight into x (no
+  // temporary; this runs once per solve of every count search).
+  std::vector<Point> tmp;
+  std::vector<Point>& sol = tail_ == 0 ? x : tmp;
+  sol.resize(static_cast<std::size_t>(n_));
   // Tail unknowns (original columns 0 .. tail-1) sit at positions nb_ .. n_-1.
   for (int a = tail_ - 1; a >= 0; --a) {
     const double piv = tri_[a * tail_ + a];
@@ -152,6 +156,7 @@ bool BandedLeastSquares::back_substitute(const std::vector<Point>& z, std::vecto
     for (int t = 0; t < tail_; ++t) s -= side_[c * tail_ + t] * sol[nb_ + t];
     sol[c] = s / R[0];
   }
+  if (tail_ == 0) return true;
   // Back to original column order.
   x.resize(static_cast<std::size_t>(n_));
   for (int col = 0; col < n_; ++col) x[col] = col < tail_ ? sol[nb_ + col] : sol[col - tail_];

@@ -148,6 +148,36 @@ std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, const CurveF
   return n;
 }
 
+// The common count is the largest count of any curve, so that one must be the paper's: the
+// smallest count that holds (CountSearch::kLinear). The fast search gives a count c that
+// holds while c - 1 fails; the smallest count that holds is <= c. Going through the curves
+// by decreasing fast count, a curve whose fast count is above the largest linear count found
+// so far gets the linear search; the first whose fast count is not stops the pass, since
+// neither it nor any after it can raise the maximum. The result: the maximum (and so the
+// surface's count) equals the linear search's, at the cost of about one linear search
+// (README "Count search").
+template <class GetPoints>
+void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of,
+                   const CurveFitOptions& base) {
+  if (base.search != CountSearch::kFast) return;
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < fits.size(); ++i)
+    if (fits[i].curve.degree == base.degree) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return fits[a].curve.count() > fits[b].curve.count();
+  });
+  int largest = 0;
+  CurveFitOptions linear = base;
+  linear.search = CountSearch::kLinear;
+  for (std::size_t i : order) {
+    if (fits[i].curve.count() <= largest) break;
+    const int fast_solves = fits[i].solves;
+    fits[i] = fit_curve(points_of(i), linear);
+    fits[i].solves += fast_solves;
+    largest = std::max(largest, fits[i].curve.count());
+  }
+}
+
 // Re-represents every curve on one common count, starting at max(degree + 1, counts) and
 // raising it until every curve holds (the guarantee's first half). `reuse` (optional) holds
 // earlier re-representations valid at `reuse_count` for curves not marked in `dirty`.
@@ -242,11 +272,14 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   if (changed) fits = row_fits_;
   rows_refitted_ =
       fit_curves(M, row_points, row_options, o_.row_count_hints, threads_, fits, changed);
+  // `fast_fits` (the searches' own results) are what an update chains its hints from.
+  std::vector<CurveFit> fast_fits = fits;
+  exact_maximum(fits, row_points, row_options);
   // Rows whose fit changed need a new re-representation.
   std::vector<char> dirty(M, 1);
   if (changed)
     for (std::size_t j = 0; j < M; ++j)
-      dirty[j] = (*changed)[j] || fits[j].curve.control != row_fits_[j].curve.control;
+      dirty[j] = (*changed)[j] || fits[j].curve.control != row_final_fits_[j].curve.control;
   report("rows", M, M);
 
   // Re-representation on the common count nu (METHOD.md 4).
@@ -268,6 +301,7 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   std::vector<CurveFit> column_fits;
   fit_curves(static_cast<std::size_t>(nu), column_points, column_options, o_.column_count_hints,
              threads_, column_fits, nullptr);
+  exact_maximum(column_fits, column_points, column_options);
   Represented cs = represent(static_cast<std::size_t>(nu), column_points, column_fits, o_.degree_v,
                              o_.closed_v, bound, threads_, true, M, nullptr, 0, nullptr);
   report("columns", static_cast<std::size_t>(nu), static_cast<std::size_t>(nu));
@@ -308,7 +342,8 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   r.repaired_columns = cs.repaired;
 
   // Keep the row stage for update(): fits, and re-representations at nu.
-  row_fits_ = std::move(fits);
+  row_fits_ = std::move(fast_fits);
+  row_final_fits_ = std::move(fits);
   row_curves_ = rs.curves;
   row_common_ = nu;
   return at;

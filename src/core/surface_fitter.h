@@ -40,7 +40,8 @@ class SurfaceFitter {
   // State of the first (untightened) attempt of the last fit, reused by update().
   bool valid_ = false;
   Point bound_ = Point::Zero();
-  std::vector<CurveFit> row_fits_;
+  std::vector<CurveFit> row_fits_;        // the count searches' results (hints chain from them)
+  std::vector<CurveFit> row_final_fits_;  // after exact_maximum(): what was re-represented
   std::vector<Rerepresentation> row_curves_;
   int row_common_ = 0;
   std::size_t rows_refitted_ = 0;
