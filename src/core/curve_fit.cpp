@@ -28,18 +28,19 @@ struct Collocation {
   detail::BandedLeastSquares lsq;
   bool singular = false;
 
-  Collocation(int p, int c, bool per, int n)
+  /// With `data`, factorises with it as right-hand side and records nothing (one use).
+  Collocation(int p, int c, bool per, int n, const Point* data = nullptr)
       : degree(p), count(c), n_points(n), periodic(per), lsq(c, p + 1, per) {
     const int w = p + 1;
     t = paper_parameters(p, c, per, n);
     basis.resize(static_cast<std::size_t>(n) * w);
     first.resize(static_cast<std::size_t>(n));
-    lsq.record_rotations();
+    if (!data) lsq.record_rotations();
     const Point zero = Point::Zero();
     for (int j = 0; j < n; ++j) {
       double* b = &basis[static_cast<std::size_t>(j) * w];
       first[j] = eval_basis(p, c, per, t[j], b);
-      lsq.add(first[j], b, zero);
+      lsq.add(first[j], b, data ? data[j] : zero);
     }
     std::vector<Point> x;
     singular = !lsq.solve(x);
@@ -72,6 +73,9 @@ struct Workspace {
 };
 thread_local Workspace tls;
 
+bool residuals(std::span<const Point> points, const Collocation& C, int count, int w,
+               const Point* bound, const Workspace& ws, Point& max_dev);
+
 // Least squares with `count` control points at the paper's parameters into ws.control.
 // With `bound`, returns early (false) at the first point out of it; otherwise computes
 // max_dev over all points and returns true. `used` is the collocation it used.
@@ -80,12 +84,29 @@ bool solve_count(std::span<const Point> points, int degree, bool periodic, int c
                  std::unique_ptr<Collocation>& uncached) {
   const int n_points = static_cast<int>(points.size());
   const int w = degree + 1;
+  if (static_cast<std::size_t>(n_points) > kLongestCached) {
+    // Too long to cache: factorise with the data directly (no rotation log; same bits).
+    uncached = std::make_unique<Collocation>(degree, count, periodic, n_points, points.data());
+    used = uncached.get();
+    if (uncached->singular)
+      throw Error(
+          ErrorCode::kInternal, "singular least-squares system in the curve stage", Place{},
+          {static_cast<double>(degree), static_cast<double>(count), static_cast<double>(n_points)});
+    uncached->lsq.solve(ws.control);
+    return residuals(points, *uncached, count, w, bound, ws, max_dev);
+  }
   const Collocation& C = collocation(degree, count, periodic, n_points, uncached);
   used = &C;
   if (C.singular || !C.lsq.replay(points.data(), ws.control, ws.z))
     throw Error(
         ErrorCode::kInternal, "singular least-squares system in the curve stage", Place{},
         {static_cast<double>(degree), static_cast<double>(count), static_cast<double>(n_points)});
+  return residuals(points, C, count, w, bound, ws, max_dev);
+}
+
+bool residuals(std::span<const Point> points, const Collocation& C, int count, int w,
+               const Point* bound, const Workspace& ws, Point& max_dev) {
+  const int n_points = static_cast<int>(points.size());
   max_dev.setZero();
   const auto& P = ws.control;
   for (int j = 0; j < n_points; ++j) {

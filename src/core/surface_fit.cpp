@@ -155,7 +155,9 @@ std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, const CurveF
 // so far gets the linear search; the first whose fast count is not stops the pass, since
 // neither it nor any after it can raise the maximum. The result: the maximum (and so the
 // surface's count) equals the linear search's, at the cost of about one linear search
-// (README "Count search").
+// (README "Count search"). Bounded: a scan that would cost more point-solves than
+// kExactMaximumBudget times the stage's points stops the pass (the fast counts stay), so a
+// single row of 10^6 points needing 1000 control points is not searched one count at a time.
 template <class GetPoints>
 void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of,
                    const CurveFitOptions& base) {
@@ -169,8 +171,16 @@ void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of,
   int largest = 0;
   CurveFitOptions linear = base;
   linear.search = CountSearch::kLinear;
+  constexpr double kExactMaximumBudget = 8;
+  double budget = 0;
+  for (std::size_t i = 0; i < fits.size(); ++i)
+    budget += kExactMaximumBudget * static_cast<double>(points_of(i).size());
   for (std::size_t i : order) {
     if (fits[i].curve.count() <= largest) break;
+    const double cost = static_cast<double>(fits[i].curve.count() - base.degree) *
+                        static_cast<double>(points_of(i).size());
+    if (cost > budget) break;
+    budget -= cost;
     const int fast_solves = fits[i].solves;
     fits[i] = fit_curve(points_of(i), linear);
     fits[i].solves += fast_solves;
