@@ -171,7 +171,7 @@ void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of,
   int largest = 0;
   CurveFitOptions linear = base;
   linear.search = CountSearch::kLinear;
-  constexpr double kExactMaximumBudget = 8;
+  constexpr double kExactMaximumBudget = 32;
   double budget = 0;
   for (std::size_t i = 0; i < fits.size(); ++i)
     budget += kExactMaximumBudget * static_cast<double>(points_of(i).size());
