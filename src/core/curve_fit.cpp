@@ -57,12 +57,9 @@ constexpr std::size_t kCacheBytes = std::size_t{64} << 20;
 constexpr std::size_t kLongestCached = 1 << 17;
 thread_local detail::ThreadCache<std::tuple<int, int, bool, int>, Collocation> cache(kCacheBytes);
 
-const Collocation& collocation(int degree, int count, bool periodic, int n_points,
-                               std::unique_ptr<Collocation>& uncached) {
-  if (static_cast<std::size_t>(n_points) > kLongestCached) {
-    uncached = std::make_unique<Collocation>(degree, count, periodic, n_points);
-    return *uncached;
-  }
+// The cached collocation (rows longer than kLongestCached never come here: solve_count()
+// factorises them with their data).
+const Collocation& collocation(int degree, int count, bool periodic, int n_points) {
   return cache.get({degree, count, periodic, n_points}, [&] {
     return std::make_unique<Collocation>(degree, count, periodic, n_points);
   });
@@ -95,7 +92,7 @@ bool solve_count(std::span<const Point> points, int degree, bool periodic, int c
     uncached->lsq.solve(ws.control);
     return residuals(points, *uncached, count, w, bound, ws, max_dev);
   }
-  const Collocation& C = collocation(degree, count, periodic, n_points, uncached);
+  const Collocation& C = collocation(degree, count, periodic, n_points);
   used = &C;
   if (C.singular || !C.lsq.replay(points.data(), ws.control, ws.z))
     throw Error(
