@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 
+#include "input_file.h"
 #include "sfit/error.h"
 
 namespace sfit::io {
@@ -250,22 +251,12 @@ RowsFile read_csv(const std::string& path) {
     ss << std::cin.rdbuf();
     text = ss.str();
   } else {
-    struct stat st {};
-    if (::stat(path.c_str(), &st) != 0)
-      throw Error(ErrorCode::kInputUnreadable,
-                  std::string("cannot open input: ") + std::strerror(errno), Place{.file = path});
-    if (S_ISDIR(st.st_mode))
-      throw Error(ErrorCode::kInputUnreadable, "cannot read input: it is a directory",
-                  Place{.file = path});
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-      throw Error(ErrorCode::kInputUnreadable,
-                  std::string("cannot open input: ") + std::strerror(errno), Place{.file = path});
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad())
+    detail::InputFile f = detail::open_input(path);
+    char block[1 << 16];
+    std::size_t got;
+    while ((got = std::fread(block, 1, sizeof block, f.get())) > 0) text.append(block, got);
+    if (std::ferror(f.get()))
       throw Error(ErrorCode::kInputUnreadable, "cannot read input", Place{.file = path});
-    text = ss.str();
   }
   return parse_csv(text, path);
 }

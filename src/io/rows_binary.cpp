@@ -9,6 +9,7 @@
 #include <cstring>
 #include <memory>
 
+#include "input_file.h"
 #include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
 
@@ -19,10 +20,6 @@ static_assert(std::endian::native == std::endian::little, ".srows is little-endi
 constexpr char kMagic[8] = {'S', 'F', 'I', 'T', 'R', 'O', 'W', 'S'};
 constexpr std::uint32_t kVersion = 1;
 constexpr std::uint64_t kHeaderBytes = 32;
-
-struct Closer {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
 
 [[noreturn]] void syntax(const std::string& path, const std::string& what) {
   throw Error(ErrorCode::kInputSyntax, "not an sfit binary rows file: " + what,
@@ -36,18 +33,11 @@ bool is_binary_rows_path(const std::string& path) {
 }
 
 RowsFile read_rows_binary(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0)
-    throw Error(ErrorCode::kInputUnreadable,
-                std::string("cannot open input: ") + std::strerror(errno), Place{.file = path});
-  if (S_ISDIR(st.st_mode))
-    throw Error(ErrorCode::kInputUnreadable, "cannot read input: it is a directory",
+  if (path == "-")
+    throw Error(ErrorCode::kUsage, "binary rows are read from a file, not standard input",
                 Place{.file = path});
-  std::unique_ptr<std::FILE, Closer> f(std::fopen(path.c_str(), "rb"));
-  if (!f)
-    throw Error(ErrorCode::kInputUnreadable,
-                std::string("cannot open input: ") + std::strerror(errno), Place{.file = path});
-  const std::uint64_t size = static_cast<std::uint64_t>(st.st_size);
+  std::uint64_t size = 0;
+  detail::InputFile f = detail::open_input(path, &size);
   unsigned char header[kHeaderBytes];
   if (size < kHeaderBytes || std::fread(header, 1, kHeaderBytes, f.get()) != kHeaderBytes)
     syntax(path, "shorter than its 32-byte header");

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <memory>
 
+#include "input_file.h"
 #include "sfit/error.h"
 
 namespace sfit::io {
@@ -147,12 +148,6 @@ class Parser {
   std::size_t col_base_ = 0;
 };
 
-struct FileCloser {
-  void operator()(std::FILE* f) const {
-    if (f && f != stdin) std::fclose(f);
-  }
-};
-
 }  // namespace
 
 RowsFile parse_rows(std::string_view text, const std::string& name) {
@@ -169,21 +164,8 @@ RowsFile parse_rows(std::string_view text, const std::string& name) {
 }
 
 RowsFile read_rows(const std::string& path) {
-  const bool is_stdin = path == "-";
-  const std::string name = is_stdin ? "-" : path;
-  if (!is_stdin) {
-    struct stat st {};
-    if (::stat(path.c_str(), &st) != 0)
-      throw Error(ErrorCode::kInputUnreadable,
-                  std::string("cannot open input: ") + std::strerror(errno), Place{.file = path});
-    if (S_ISDIR(st.st_mode))
-      throw Error(ErrorCode::kInputUnreadable, "cannot read input: it is a directory",
-                  Place{.file = path});
-  }
-  std::unique_ptr<std::FILE, FileCloser> f(is_stdin ? stdin : std::fopen(path.c_str(), "rb"));
-  if (!f)
-    throw Error(ErrorCode::kInputUnreadable,
-                std::string("cannot open input: ") + std::strerror(errno), Place{.file = name});
+  const std::string name = path;
+  detail::InputFile f = detail::open_input(path);
   Parser p(name);
   constexpr std::size_t kBlock = 1 << 22;
   std::string buf;
