@@ -1,5 +1,7 @@
 
 include(CMakePackageConfigHelpers)
+# Installed as sfit::sfit and sfit::io, the names the build tree uses too.
+set_target_properties(sfit_io PROPERTIES EXPORT_NAME io)
 install(TARGETS sfit sfit_io EXPORT sfitTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
