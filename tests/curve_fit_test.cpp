@@ -50,8 +50,9 @@ TEST(CurveFit, MinimalityOneFewerFails) {
         o.search = CountSearch::kFast;
         const CurveFit g = fit_curve(pts, o);
         EXPECT_TRUE(holds(g, o.bound));
-        if (g.curve.count() > p + 1)
+        if (g.curve.count() > p + 1) {
           EXPECT_FALSE(holds(fit_curve_with_count(pts, p, periodic, g.curve.count() - 1), o.bound));
+        }
         EXPECT_GE(g.curve.count(), c);
       }
 }

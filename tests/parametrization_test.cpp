@@ -18,8 +18,9 @@ TEST(Parametrization, OpenEndsOnDomainAndGrevilleWhenInterpolating) {
         EXPECT_EQ(t.front(), 0.0);
         EXPECT_EQ(t.back(), domain_end(p, n, false));
         for (int j = 1; j < N; ++j) EXPECT_GT(t[j], t[j - 1]);
-        if (N == n)
+        if (N == n) {
           for (int j = 0; j < N; ++j) EXPECT_NEAR(t[j], greville(p, n, false, j), 1e-12);
+        }
       }
 }
 

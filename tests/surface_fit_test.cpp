@@ -170,7 +170,9 @@ TEST(SurfaceFit, RowCountsAreMinimalAtHalfTheTolerance) {
           .all();
     };
     EXPECT_TRUE(holds(c)) << j;
-    if (c > 4) EXPECT_FALSE(holds(c - 1)) << j;
+    if (c > 4) {
+      EXPECT_FALSE(holds(c - 1)) << j;
+    }
   }
 }
 
