@@ -4,7 +4,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build build
+cmake --build build --target sfit_cli
 mkdir -p out
 build/apps/sfit/sfit fit examples/ship_px121_stations.rows -o out/hull.json --report out/hull-report.json
 echo "surface: out/hull.json  report: out/hull-report.json"
