@@ -4,6 +4,7 @@
 #include <map>
 
 #include "sfit/error.h"
+#include "sfit/io/file_names.h"
 #include "sfit/io/surface_json.h"
 #ifdef SFIT_HAVE_EXCHANGE
 #include "sfit/exchange/cad_writers.h"
@@ -41,15 +42,6 @@ const std::map<std::string, Writer>& writers() {
 
 }  // namespace
 
-std::string extension_of(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string e = path.substr(dot + 1);
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-  return e;
-}
-
 std::vector<std::string> output_extensions() {
   std::vector<std::string> v;
   for (const auto& [k, w] : writers()) v.push_back(k);
@@ -61,9 +53,10 @@ void check_output_extension(const std::string& path) {
   if (writers().count(e)) return;
   std::string known;
   for (const auto& k : output_extensions()) known += (known.empty() ? "." : ", .") + k;
-  throw Error(ErrorCode::kUsage,
-              "cannot write '" + path + "': unknown output extension '" + e + "' (known: " + known + ")",
-              Place{.option = "-o"});
+  throw Error(
+      ErrorCode::kUsage,
+      "cannot write '" + path + "': unknown output extension '" + e + "' (known: " + known + ")",
+      Place{.option = "-o"});
 }
 
 void check_units(const std::string& units) {

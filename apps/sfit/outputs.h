@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "sfit/io/file_names.h"
 #include "sfit/rows.h"
 #include "sfit/surface.h"
 #include "sfit/surface_fit.h"
@@ -18,14 +19,13 @@ struct OutputContext {
   const FitResult* fit = nullptr;
   const Rows* rows = nullptr;
   std::string input_name;
-  bool mesh = false;        ///< --mesh: OBJ as a tessellated mesh instead of free-form
-  int mesh_density = 0;     ///< --mesh-density: samples per direction (0: automatic)
-  bool fields = false;      ///< --fields: deviation/curvature point data (VTK)
+  bool mesh = false;         ///< --mesh: OBJ as a tessellated mesh instead of free-form
+  int mesh_density = 0;      ///< --mesh-density: samples per direction (0: automatic)
+  bool fields = false;       ///< --fields: deviation/curvature point data (VTK)
   std::string units = "mm";  ///< --units: length unit stated in STEP/IGES
 };
 
-/// Lower-case extension of `path` without the dot ("json", "step", ...).
-std::string extension_of(const std::string& path);
+using io::extension_of;
 /// Extensions that -o accepts in this build.
 std::vector<std::string> output_extensions();
 /// Throws Error(kUsage, option "-o") if no writer handles the extension of `path`.

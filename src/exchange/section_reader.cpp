@@ -24,19 +24,11 @@
 #include "occt_common.h"
 #include "sfit/error.h"
 #include "sfit/exchange/readers.h"
+#include "sfit/io/file_names.h"
 
 namespace sfit::exchange {
 
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string e = path.substr(dot + 1);
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
 
 bool is_step(const std::string& e) {
   return e == "step" || e == "stp";
@@ -75,12 +67,12 @@ void sample_edge(const TopoDS_Edge& edge, double deflection, double same, std::v
 }  // namespace
 
 bool is_exchange_input(const std::string& path) {
-  const std::string e = lower_extension(path);
+  const std::string e = io::extension_of(path);
   return is_step(e) || is_iges(e);
 }
 
 SectionsFile read_sections(const std::string& path) {
-  const std::string ext = lower_extension(path);
+  const std::string ext = io::extension_of(path);
   if (!is_step(ext) && !is_iges(ext))
     fail(ErrorCode::kUsage, path, "not a STEP (.step, .stp) or IGES (.igs, .iges) file name");
   struct stat st {};

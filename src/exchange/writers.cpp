@@ -1,4 +1,5 @@
 #include "sfit/exchange/writers.h"
+#include "sfit/io/file_names.h"
 
 #include <algorithm>
 
@@ -10,15 +11,6 @@
 namespace sfit::exchange {
 
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string e = path.substr(dot + 1);
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-  return e;
-}
 
 Mesh mesh_for(const Surface& s, const WriteOptions& o) {
   if (o.mesh_density != 0) return tessellate(s, o.mesh_density, o.mesh_density);
@@ -34,7 +26,7 @@ std::vector<std::string> writer_extensions() {
 
 void write_surface(const std::string& path, const Surface& s, const WriteOptions& o,
                    const FitResult* fit, const Rows* rows) {
-  const std::string e = lower_extension(path);
+  const std::string e = io::extension_of(path);
   CadOptions cad;
   cad.units = o.units;
   if (e == "step" || e == "stp") return write_step(path, s, cad);
