@@ -233,14 +233,7 @@ class Parser {
 
 RowsFile parse_csv(std::string_view text, const std::string& name) {
   Parser p(name);
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t nl = text.find('\n', start);
-    if (nl == std::string_view::npos) nl = text.size();
-    if (nl - start > kMaxLineBytes) p.too_long();
-    p.line(text.substr(start, nl - start));
-    start = nl + 1;
-  }
+  detail::feed_lines(text, kMaxLineBytes, p);
   return p.finish();
 }
 
