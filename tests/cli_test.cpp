@@ -31,6 +31,26 @@ TEST(Cli, FitWritesContractJsonAndReport) {
   EXPECT_GT(ref.u_end(), ref.u_begin());
 }
 
+TEST(Cli, ParametersOptionReachesTheFitAndTheReport) {
+  const std::string dir = test::temp_dir();
+  const std::string hull = "'" + test::example("ship_px121_stations.rows") + "'";
+  const auto paper = run_cli("fit " + hull + " --tol-rel 1e-2 -q --report '" + dir + "/p.json'");
+  const auto chord =
+      run_cli("fit " + hull + " --tol-rel 1e-2 --parameters chord --report '" + dir + "/c.json'");
+  ASSERT_EQ(paper.exit_code, 0) << paper.err;
+  ASSERT_EQ(chord.exit_code, 0) << chord.err;
+  EXPECT_NE(chord.err.find("; chord parameters"), std::string::npos) << chord.err;
+  const auto p = nlohmann::json::parse(test::read_file(dir + "/p.json"));
+  const auto c = nlohmann::json::parse(test::read_file(dir + "/c.json"));
+  EXPECT_EQ(p["parameters"], "paper");
+  EXPECT_EQ(c["parameters"], "chord");
+  EXPECT_TRUE(c["within_tolerance"].get<bool>());
+  // The hull's stations are sampled unevenly: chord length needs fewer control points.
+  const int np = p["control_points"][0].get<int>() * p["control_points"][1].get<int>();
+  const int nc = c["control_points"][0].get<int>() * c["control_points"][1].get<int>();
+  EXPECT_LT(nc, np);
+}
+
 TEST(Cli, ReadsStandardInputAndPerAxisTolerance) {
   const std::string dir = test::temp_dir();
   const auto r =

@@ -30,6 +30,7 @@ struct FitArgs {
   std::optional<double> tol_rel;
   std::string closed;
   std::string search = "fast";
+  std::string parameters = "paper";
   int threads = 0;
   bool quiet = false;
   bool mesh = false;
@@ -43,9 +44,13 @@ struct FitArgs {
 };
 
 #ifdef SFIT_HAVE_RENDER
-bool wants_pictures(const FitArgs& a) { return !a.pngs.empty(); }
+bool wants_pictures(const FitArgs& a) {
+  return !a.pngs.empty();
+}
 #else
-bool wants_pictures(const FitArgs&) { return false; }
+bool wants_pictures(const FitArgs&) {
+  return false;
+}
 #endif
 
 // Maps a data error of the fit onto the input file (and file:line for a row-level one).
@@ -59,7 +64,9 @@ bool wants_pictures(const FitArgs&) { return false; }
   throw Error(e.code(), e.message(), p, e.values());
 }
 
-std::string g(double x) { return fmt::format("{:.4g}", x); }
+std::string g(double x) {
+  return fmt::format("{:.4g}", x);
+}
 std::string vec(const Point& p) {
   if (p.x() == p.y() && p.y() == p.z()) return g(p.x());
   return fmt::format("({}, {}, {})", g(p.x()), g(p.y()), g(p.z()));
@@ -84,9 +91,11 @@ int run_fit(const FitArgs& a) {
     throw Error(ErrorCode::kUsage, "'" + a.closed + "' is not one of u, v, uv, none",
                 Place{.option = "--closed"});
   o.search = a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast;
+  parse_parametrization(a.parameters, o.parametrization);  // checked by CLI11
   o.threads = a.threads;
   if (a.tol && a.tol_rel)
-    throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both", Place{.option = "--tol-rel"});
+    throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both",
+                Place{.option = "--tol-rel"});
   if (a.tol_rel && !(*a.tol_rel >= 0 && *a.tol_rel <= 1))
     throw Error(
         ErrorCode::kUsage,
@@ -122,8 +131,9 @@ int run_fit(const FitArgs& a) {
                   in.rows.total_points(), lo, hi, o.closed_u ? ", closed rows" : "",
                   o.closed_v ? ", closed row sequence" : ""));
   say(fmt::format("degree {} x {}, tolerance {}{}", o.degree_u, o.degree_v, vec(o.tolerance),
-                  tol_abs.x() >= 0 ? ""
-                                   : fmt::format(" ({} of the diagonal {})", g(fraction), g(box.diagonal()))));
+                  tol_abs.x() >= 0
+                      ? ""
+                      : fmt::format(" ({} of the diagonal {})", g(fraction), g(box.diagonal()))));
   const bool show_progress = verbose && in.rows.total_points() >= 200000 && isatty(2);
   if (show_progress)
     o.progress = [](std::string_view stage, std::size_t done, std::size_t total) {
@@ -141,8 +151,12 @@ int run_fit(const FitArgs& a) {
   const FitReport& r = fit.report;
   const auto [rmin, rmax] = std::minmax_element(r.row_counts.begin(), r.row_counts.end());
   const auto [cmin, cmax] = std::minmax_element(r.column_counts.begin(), r.column_counts.end());
-  say(fmt::format("surface {} x {} control points (rows need {}..{}, columns {}..{})", r.count_u,
-                  r.count_v, *rmin, *rmax, *cmin, *cmax));
+  say(fmt::format(
+      "surface {} x {} control points (rows need {}..{}, columns {}..{}); {} parameters", r.count_u,
+      r.count_v, *rmin, *rmax, *cmin, *cmax, to_string(r.parametrization)));
+  if (r.parametrization != o.parametrization)
+    say(fmt::format("note: {} parameters could not hold the tolerance here; the paper's did",
+                    to_string(o.parametrization)));
   double used = 0;
   for (int k = 0; k < 3; ++k)
     if (r.tolerance[k] > 0) used = std::max(used, r.max_deviation[k] / r.tolerance[k]);
@@ -152,11 +166,14 @@ int run_fit(const FitArgs& a) {
   say(fmt::format("every point within tolerance: {}; {:.3f} s", r.within_tolerance ? "yes" : "NO",
                   r.seconds));
   if (!r.within_tolerance)
-    throw Error(ErrorCode::kToleranceNotMet,
-                fmt::format("the surface misses the tolerance at row {} point {} by {}; nothing written",
-                            r.worst_row, r.worst_index, vec(r.worst_deviation)),
-                Place{.file = in.name}, {r.worst_deviation.x(), r.worst_deviation.y(), r.worst_deviation.z()});
-  OutputContext ctx{fit.surface, &fit, &in.rows, in.name, a.mesh, a.mesh_density, a.fields, a.units};
+    throw Error(
+        ErrorCode::kToleranceNotMet,
+        fmt::format("the surface misses the tolerance at row {} point {} by {}; nothing written",
+                    r.worst_row, r.worst_index, vec(r.worst_deviation)),
+        Place{.file = in.name},
+        {r.worst_deviation.x(), r.worst_deviation.y(), r.worst_deviation.z()});
+  OutputContext ctx{fit.surface, &fit,           &in.rows, in.name,
+                    a.mesh,      a.mesh_density, a.fields, a.units};
   for (const auto& out : a.outputs) {
     write_output(out, ctx);
     say("wrote " + out);
@@ -176,27 +193,30 @@ int run_fit(const FitArgs& a) {
 void add_fit_command(CLI::App& app, Runner& run) {
   auto args = std::make_shared<FitArgs>();
   CLI::App* c = app.add_subcommand("fit", "fit a surface to rows of points");
-  c->add_option("INPUT", args->input, "rows of points: .rows or .csv file ('-': .rows on standard input), or "
+  c->add_option("INPUT", args->input,
+                "rows of points: .rows or .csv file ('-': .rows on standard input), or "
                 "section curves in a .step/.iges file (each curve one row)")
       ->required();
   c->add_option("-o,--output", args->outputs,
                 "output file; the extension picks the format (.json .step .igs .obj .stl .ply "
                 ".vtk .vts; repeat -o for several)");
   c->add_option("--report", args->report, "write the fit report as JSON");
-  c->add_option("--degree", args->degree, "degree in both directions, 1 ... 20")
-      ->default_val(3);
+  c->add_option("--degree", args->degree, "degree in both directions, 1 ... 20")->default_val(3);
   c->add_option("--degree-u", args->degree_u, "degree along the rows (overrides --degree)");
   c->add_option("--degree-v", args->degree_v, "degree across the rows (overrides --degree)");
   c->add_option("--tol", args->tol,
                 "tolerance T or Tx,Ty,Tz, absolute, >= 0 (0 interpolates); "
                 "default 1e-3 of the bounding-box diagonal");
-  c->add_option("--tol-rel", args->tol_rel,
-                "tolerance as a fraction of the bounding-box diagonal");
+  c->add_option("--tol-rel", args->tol_rel, "tolerance as a fraction of the bounding-box diagonal");
   c->add_option("--closed", args->closed,
                 "closed directions: u (each row is a closed contour), v (the rows form a "
                 "closed sequence), uv (both), none");
   c->add_option("--search", args->search, "count search: fast (default) or linear (the paper's)")
       ->check(CLI::IsMember({"fast", "linear"}));
+  c->add_option("--parameters", args->parameters,
+                "how points get parameters, along and across the rows: paper (SFIT01's, by the "
+                "point's index; default), uniform (index), chord (chord length) or centripetal")
+      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal"}));
   c->add_option("--threads", args->threads, "threads (0: all cores); results do not depend on it")
       ->check(CLI::Range(0, 4096));
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");

@@ -223,6 +223,7 @@ struct RowArgs {
   std::string tol;
   double tol_rel = -1;
   std::string search = "fast";
+  std::string parameters = "paper";
   std::string size = "960x720";
   bool quiet = false;
 };
@@ -275,6 +276,11 @@ int run_render_rows(const RowArgs& a) {
   const Point bound = 0.5 * tol;
   CurveFitOptions co{a.degree, closed, bound,
                      a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast};
+  Parametrization rule = Parametrization::kPaper;
+  parse_parametrization(a.parameters, rule);  // checked by CLI11
+  std::vector<double> positions;
+  if (rule != Parametrization::kPaper) positions = normalized_positions(row, rule, closed);
+  co.positions = positions;
   const CurveFit fit = fit_curve(row, co);
   render::RowPictureOptions o;
   o.width = w;
@@ -446,6 +452,9 @@ void add_render_commands(CLI::App& app, Runner& run) {
                   "tolerance as a fraction of the data's bounding-box diagonal");
     c->add_option("--search", args->search, "count search: fast (default) or linear")
         ->check(CLI::IsMember({"fast", "linear"}));
+    c->add_option("--parameters", args->parameters,
+                  "paper (default), uniform, chord or centripetal, as sfit fit --parameters")
+        ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal"}));
     c->add_option("--size", args->size, "picture size WIDTHxHEIGHT (default 960x720)");
     c->add_flag("-q,--quiet", args->quiet, "print errors only");
     c->footer(

@@ -25,16 +25,22 @@ enum class CountSearch {
 /// A least-squares curve and what it achieved.
 struct CurveFit {
   Curve curve;
-  std::vector<double> parameters;       ///< t of each data point (paper_parameters())
+  std::vector<double> parameters;  ///< t of each data point
+  /// true: `parameters` are scaled_parameters() of the positions the fit was given (METHOD.md
+  /// 7.4); false: the paper's (paper_parameters()), also where the positions could not be
+  /// used (an interpolant they make singular).
+  bool scaled = false;
   Point max_deviation = Point::Zero();  ///< max_j |C(t_j) - D_j| per axis
   int solves = 0;                       ///< least-squares solves the search needed
 };
 
 /// Least-squares fit of `points` by a uniform curve of `degree` with exactly `count` control
-/// points at the paper's parameters (METHOD.md 3). Requires degree+1 <= count <= points.size()
-/// (a periodic fit needs count >= degree + 1 too). Throws Error(kInternal) if the system is
-/// singular, which the paper's parameters rule out.
-CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count);
+/// points at the paper's parameters (METHOD.md 3), or, given `positions`
+/// (normalized_positions()), at their scaled_parameters(). Requires degree+1 <= count <=
+/// points.size() (a periodic fit needs count >= degree + 1 too). Throws Error(kInternal) if
+/// the system is singular, which the paper's parameters rule out (positions may not).
+CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count,
+                              std::span<const double> positions = {});
 
 struct CurveFitOptions {
   int degree = 3;
@@ -42,6 +48,13 @@ struct CurveFitOptions {
   Point bound = Point::Zero();  ///< per-axis bound on |C(t_j) - D_j| (T/2 in a surface fit)
   CountSearch search = CountSearch::kFast;
   int hint = 0;  ///< where kFast starts, the count kKnown takes; 0: degree + 1
+  /// Positions of the points (normalized_positions()) for the rules of METHOD.md 7.4; empty:
+  /// the paper's parameters. A count whose system the positions leave singular does not hold;
+  /// at count N (interpolation) the paper's parameters are the fallback.
+  std::span<const double> positions;
+  /// The positions are shared by many curves (all columns, rows of one length at uniform
+  /// positions): worth caching their factorisations.
+  bool shared_positions = false;
 };
 
 /// The curve with the smallest count in [degree+1, N] whose fit keeps every point within

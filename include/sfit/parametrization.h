@@ -2,9 +2,40 @@
 // between two uniform curves (METHOD.md section 4 step 1).
 #pragma once
 
+#include <span>
+#include <string_view>
 #include <vector>
 
+#include "sfit/rows.h"
+
 namespace sfit {
+
+/// How the data points of a row (or the rows, across) get their parameters.
+enum class Parametrization {
+  kPaper,        ///< METHOD.md 3: the Greville sequence read at the point's index (SFIT01)
+  kUniform,      ///< METHOD.md 7.4: equal steps in the point's index, t = L j / (N-1)
+  kChord,        ///< METHOD.md 7.4: proportional to the chord length along the row
+  kCentripetal,  ///< METHOD.md 7.4: proportional to the square root of the chord length
+};
+
+/// "paper", "uniform", "chord", "centripetal".
+std::string_view to_string(Parametrization p);
+/// The inverse of to_string(); false if `name` is none of them.
+bool parse_parametrization(std::string_view name, Parametrization& out);
+
+/// Positions f_0 ... f_{N-1} of a row's points as fractions of the row, for the rules other
+/// than kPaper: open rows from f_0 = 0 to f_last = 1, closed rows from f_0 = 0 up to below 1
+/// (the closing chord, last point back to the first, counts). A row whose points all coincide
+/// gets uniform positions.
+std::vector<double> normalized_positions(std::span<const Point> points, Parametrization rule,
+                                         bool periodic);
+
+/// Parameters of points at `positions` (normalized_positions()) on a uniform curve of
+/// `degree` with `count` control points: t = f (count - degree) open, and for closed curves
+/// t = o + f count with the offset o of the periodic Greville rule (0 for odd, 1/2 for even
+/// degree). Uniform positions of a closed row give exactly paper_parameters().
+std::vector<double> scaled_parameters(int degree, int count, bool periodic,
+                                      std::span<const double> positions);
 
 /// The paper's parameters t_0 ... t_{n_points-1} of the points of one row, for a curve of
 /// `degree` with `count` control points.
@@ -20,9 +51,13 @@ std::vector<double> paper_parameters(int degree, int count, bool periodic, int n
 /// tau_l (its Greville sequence read at fractional index l (count_from-1)/(count_to-1)) and
 /// places those samples at the new Greville abscissae g_l. This map sends tau_l to g_l and is
 /// linear in between (exactly linear for periodic curves).
+/// With `scaled` (curves fitted at scaled_parameters(), METHOD.md 7.4) the map is the linear
+/// scaling of one domain onto the other, which keeps a point's position f, and tau_l is the
+/// preimage of g_l; for periodic curves the two coincide.
 class ReparameterMap {
  public:
-  ReparameterMap(int degree_from, int count_from, int degree_to, int count_to, bool periodic);
+  ReparameterMap(int degree_from, int count_from, int degree_to, int count_to, bool periodic,
+                 bool scaled = false);
   /// Parameter on the new curve of parameter t on the old one.
   double operator()(double t) const;
   /// The sample parameters tau_l on the old curve (count_to of them).
@@ -31,7 +66,7 @@ class ReparameterMap {
   const std::vector<double>& targets() const { return g_; }
 
  private:
-  bool periodic_;
+  bool periodic_, scaled_ = false;
   double scale_ = 1, offset_from_ = 0, offset_to_ = 0, period_to_ = 1;
   std::vector<double> tau_, g_;
 };

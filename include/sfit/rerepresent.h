@@ -21,7 +21,7 @@ struct Rerepresentation {
 /// control points (METHOD.md 4): samples the old curve at count parameters of the paper's
 /// rule and interpolates them at the new Greville abscissae. Each data point gets the new
 /// parameter `target_parameters[k]`, or, when that is empty, the image of its old parameter
-/// under ReparameterMap.
+/// under ReparameterMap (the scaled map when fit.scaled: METHOD.md 7.4).
 ///
 /// Guarantee (beyond the paper): every data point is then checked against `bound` per axis.
 /// Where interpolating the samples pushed points out, those points are added to the system as

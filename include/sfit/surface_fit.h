@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sfit/curve_fit.h"
+#include "sfit/parametrization.h"
 #include "sfit/rows.h"
 #include "sfit/surface.h"
 
@@ -22,6 +23,10 @@ struct FitOptions {
   bool closed_u = false;            ///< rows are closed contours (first point not repeated)
   bool closed_v = false;            ///< the sequence of rows is closed
   CountSearch search = CountSearch::kFast;
+  /// How points get their parameters, in both directions (METHOD.md 3 and 7.4). Across the
+  /// rows, the geometric rules average the columns' normalized chord lengths (one v per row,
+  /// shared by every column, as the guarantee needs).
+  Parametrization parametrization = Parametrization::kPaper;
   /// Counts to start the searches from, e.g. a previous fit's report.row_counts and
   /// column_counts (used where their size matches the rows, the columns); kKnown takes them
   /// as the answer. Without them kFast starts each row from the previous row's count, in
@@ -46,6 +51,7 @@ struct FitReport {
   int count_v = 0;  ///< nv
   int degree_u = 0, degree_v = 0;
   bool closed_u = false, closed_v = false;
+  Parametrization parametrization = Parametrization::kPaper;
   std::vector<int> row_counts;     ///< minimal count of each row (curve stage)
   std::vector<int> column_counts;  ///< minimal count of each column (transverse stage)
   int raised_u = 0;                ///< times nu was raised above max(row_counts) by the guarantee

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <memory>
 #include <tuple>
 
@@ -23,16 +25,23 @@ namespace {
 struct Collocation {
   int degree, count, n_points;
   bool periodic;
+  std::vector<double> positions;  // empty: the paper's parameters
   std::vector<double> t, basis;
   std::vector<int> first;
   detail::BandedLeastSquares lsq;
   bool singular = false;
 
   /// With `data`, factorises with it as right-hand side and records nothing (one use).
-  Collocation(int p, int c, bool per, int n, const Point* data = nullptr)
-      : degree(p), count(c), n_points(n), periodic(per), lsq(c, p + 1, per) {
+  Collocation(int p, int c, bool per, int n, std::span<const double> pos,
+              const Point* data = nullptr)
+      : degree(p),
+        count(c),
+        n_points(n),
+        periodic(per),
+        positions(pos.begin(), pos.end()),
+        lsq(c, p + 1, per) {
     const int w = p + 1;
-    t = paper_parameters(p, c, per, n);
+    t = pos.empty() ? paper_parameters(p, c, per, n) : scaled_parameters(p, c, per, pos);
     basis.resize(static_cast<std::size_t>(n) * w);
     first.resize(static_cast<std::size_t>(n));
     if (!data) lsq.record_rotations();
@@ -46,23 +55,39 @@ struct Collocation {
     singular = !lsq.solve(x);
   }
   std::size_t bytes() const {
-    return sizeof(*this) + sizeof(double) * (t.size() + basis.size()) + sizeof(int) * first.size() +
-           lsq.bytes();
+    return sizeof(*this) + sizeof(double) * (positions.size() + t.size() + basis.size()) +
+           sizeof(int) * first.size() + lsq.bytes();
   }
 };
 
-// Per-thread cache of collocations; rows too long to be worth caching are factorised
-// directly.
+// FNV-1a over the positions' bits: part of the cache key (equality is checked on a hit).
+std::uint64_t hash_positions(std::span<const double> pos) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (double d : pos) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &d, sizeof bits);
+    h = (h ^ bits) * 1099511628211ull;
+  }
+  return h;
+}
+
+// Per-thread cache of collocations; rows too long to be worth caching, and rows whose
+// positions no other curve shares, are factorised directly.
 constexpr std::size_t kCacheBytes = std::size_t{64} << 20;
 constexpr std::size_t kLongestCached = 1 << 17;
-thread_local detail::ThreadCache<std::tuple<int, int, bool, int>, Collocation> cache(kCacheBytes);
+using CollocationKey = std::tuple<int, int, bool, int, std::uint64_t>;
+thread_local detail::ThreadCache<CollocationKey, Collocation> cache(kCacheBytes);
 
-// The cached collocation (rows longer than kLongestCached never come here: solve_count()
-// factorises them with their data).
-const Collocation& collocation(int degree, int count, bool periodic, int n_points) {
-  return cache.get({degree, count, periodic, n_points}, [&] {
-    return std::make_unique<Collocation>(degree, count, periodic, n_points);
-  });
+// The cached collocation, or nullptr when the cached one was made for other positions (a
+// hash collision).
+const Collocation* collocation(int degree, int count, bool periodic, int n_points,
+                               std::span<const double> positions) {
+  const Collocation& C = cache.get(
+      {degree, count, periodic, n_points, positions.empty() ? 0 : hash_positions(positions)},
+      [&] { return std::make_unique<Collocation>(degree, count, periodic, n_points, positions); });
+  if (!std::equal(C.positions.begin(), C.positions.end(), positions.begin(), positions.end()))
+    return nullptr;
+  return &C;
 }
 
 struct Workspace {
@@ -73,32 +98,39 @@ thread_local Workspace tls;
 bool residuals(std::span<const Point> points, const Collocation& C, int count, int w,
                const Point* bound, const Workspace& ws, Point& max_dev);
 
-// Least squares with `count` control points at the paper's parameters into ws.control.
-// With `bound`, returns early (false) at the first point out of it; otherwise computes
-// max_dev over all points and returns true. `used` is the collocation it used.
-bool solve_count(std::span<const Point> points, int degree, bool periodic, int count,
-                 const Point* bound, Workspace& ws, Point& max_dev, const Collocation*& used,
-                 std::unique_ptr<Collocation>& uncached) {
+enum class Solve { kFails, kHolds, kSingular };
+
+// Least squares with `count` control points at the paper's parameters (or the positions')
+// into ws.control. With `bound`, stops early (kFails) at the first point out of it; otherwise
+// computes max_dev over all points. `used` is the collocation it used. A singular system is
+// an internal error at the paper's parameters and kSingular at positions.
+Solve solve_count(std::span<const Point> points, int degree, bool periodic, int count,
+                  std::span<const double> positions, bool cache_it, const Point* bound,
+                  Workspace& ws, Point& max_dev, const Collocation*& used,
+                  std::unique_ptr<Collocation>& uncached) {
   const int n_points = static_cast<int>(points.size());
   const int w = degree + 1;
-  if (static_cast<std::size_t>(n_points) > kLongestCached) {
-    // Too long to cache: factorise with the data directly (no rotation log; same bits).
-    uncached = std::make_unique<Collocation>(degree, count, periodic, n_points, points.data());
-    used = uncached.get();
-    if (uncached->singular)
-      throw Error(
-          ErrorCode::kInternal, "singular least-squares system in the curve stage", Place{},
-          {static_cast<double>(degree), static_cast<double>(count), static_cast<double>(n_points)});
-    uncached->lsq.solve(ws.control);
-    return residuals(points, *uncached, count, w, bound, ws, max_dev);
-  }
-  const Collocation& C = collocation(degree, count, periodic, n_points);
-  used = &C;
-  if (C.singular || !C.lsq.replay(points.data(), ws.control, ws.z))
+  auto singular = [&]() {
+    if (!positions.empty()) return Solve::kSingular;
     throw Error(
         ErrorCode::kInternal, "singular least-squares system in the curve stage", Place{},
         {static_cast<double>(degree), static_cast<double>(count), static_cast<double>(n_points)});
-  return residuals(points, C, count, w, bound, ws, max_dev);
+  };
+  const Collocation* C = nullptr;
+  if (cache_it && static_cast<std::size_t>(n_points) <= kLongestCached)
+    C = collocation(degree, count, periodic, n_points, positions);
+  if (C) {
+    used = C;
+    if (C->singular || !C->lsq.replay(points.data(), ws.control, ws.z)) return singular();
+  } else {
+    // Too long to cache, or positions of this curve alone: factorise with the data directly
+    // (no rotation log; the same bits as a replay).
+    uncached =
+        std::make_unique<Collocation>(degree, count, periodic, n_points, positions, points.data());
+    used = uncached.get();
+    if (uncached->singular || !uncached->lsq.solve(ws.control)) return singular();
+  }
+  return residuals(points, *used, count, w, bound, ws, max_dev) ? Solve::kHolds : Solve::kFails;
 }
 
 bool residuals(std::span<const Point> points, const Collocation& C, int count, int w,
@@ -128,17 +160,23 @@ CurveFit from_workspace(const Workspace& ws, const Collocation& C, const Point& 
   f.curve.periodic = C.periodic;
   f.curve.control = ws.control;
   f.parameters = C.t;
+  f.scaled = !C.positions.empty();
   f.max_deviation = max_dev;
   return f;
 }
 
 }  // namespace
 
-CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count) {
+CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count,
+                              std::span<const double> positions) {
   Point dev;
   const Collocation* used = nullptr;
   std::unique_ptr<Collocation> uncached;
-  solve_count(points, degree, periodic, count, nullptr, tls, dev, used, uncached);
+  if (solve_count(points, degree, periodic, count, positions, positions.empty(), nullptr, tls, dev,
+                  used, uncached) == Solve::kSingular)
+    throw Error(ErrorCode::kInternal, "singular least-squares system in the curve stage", Place{},
+                {static_cast<double>(degree), static_cast<double>(count),
+                 static_cast<double>(points.size())});
   CurveFit f = from_workspace(tls, *used, dev);
   f.solves = 1;
   return f;
@@ -165,14 +203,24 @@ CurveFit fit_curve(std::span<const Point> points, const CurveFitOptions& o) {
   Workspace& ws = tls;
   int solves = 0;
   CurveFit best;
-  // Does `count` hold? Keeps the fit when it does. The interpolant (count n) always holds.
+  const bool cache_it = o.positions.empty() || o.shared_positions;
+  // Does `count` hold? Keeps the fit when it does. The interpolant (count n) always holds: at
+  // the positions if they give one within the bound, at the paper's parameters otherwise.
   auto holds = [&](int count) {
     Point dev;
     ++solves;
     const Collocation* used = nullptr;
     std::unique_ptr<Collocation> uncached;
-    const bool ok = solve_count(points, o.degree, o.periodic, count,
-                                count == n ? nullptr : &o.bound, ws, dev, used, uncached);
+    const bool last_resort = count == n;
+    Solve r = solve_count(points, o.degree, o.periodic, count, o.positions, cache_it,
+                          last_resort && o.positions.empty() ? nullptr : &o.bound, ws, dev, used,
+                          uncached);
+    if (last_resort && r != Solve::kHolds && !o.positions.empty()) {
+      ++solves;
+      r = solve_count(points, o.degree, o.periodic, count, {}, true, nullptr, ws, dev, used,
+                      uncached);
+    }
+    const bool ok = r == Solve::kHolds;
     if (ok) best = from_workspace(ws, *used, dev);
     return ok;
   };

@@ -18,6 +18,67 @@ double wrap(double t, double period) {
 }
 }  // namespace
 
+std::string_view to_string(Parametrization p) {
+  switch (p) {
+    case Parametrization::kPaper:
+      return "paper";
+    case Parametrization::kUniform:
+      return "uniform";
+    case Parametrization::kChord:
+      return "chord";
+    case Parametrization::kCentripetal:
+      return "centripetal";
+  }
+  return "paper";
+}
+
+bool parse_parametrization(std::string_view name, Parametrization& out) {
+  for (Parametrization p : {Parametrization::kPaper, Parametrization::kUniform,
+                            Parametrization::kChord, Parametrization::kCentripetal})
+    if (name == to_string(p)) {
+      out = p;
+      return true;
+    }
+  return false;
+}
+
+std::vector<double> normalized_positions(std::span<const Point> points, Parametrization rule,
+                                         bool periodic) {
+  const std::size_t n = points.size();
+  std::vector<double> f(n, 0.0);
+  if (n < 2) return f;
+  const std::size_t steps = periodic ? n : n - 1;
+  double total = 0;
+  if (rule == Parametrization::kChord || rule == Parametrization::kCentripetal) {
+    for (std::size_t j = 1; j <= steps; ++j) {
+      const double d = (points[j % n] - points[j - 1]).norm();
+      total += rule == Parametrization::kCentripetal ? std::sqrt(d) : d;
+      if (j < n) f[j] = total;
+    }
+  }
+  if (!(total > 0) || !std::isfinite(total)) {  // kUniform, or all points coincide
+    for (std::size_t j = 0; j < n; ++j) f[j] = static_cast<double>(j) / steps;
+  } else {
+    for (std::size_t j = 1; j < n; ++j) f[j] /= total;
+  }
+  if (!periodic) f[n - 1] = 1.0;  // exact end despite round-off
+  return f;
+}
+
+std::vector<double> scaled_parameters(int degree, int count, bool periodic,
+                                      std::span<const double> positions) {
+  std::vector<double> t(positions.size());
+  if (periodic) {
+    const double o = periodic_offset(degree);
+    for (std::size_t j = 0; j < t.size(); ++j) t[j] = wrap(o + positions[j] * count, count);
+    return t;
+  }
+  const double length = domain_end(degree, count, false);
+  for (std::size_t j = 0; j < t.size(); ++j) t[j] = positions[j] * length;
+  if (!t.empty() && positions.back() == 1.0) t.back() = length;
+  return t;
+}
+
 std::vector<double> paper_parameters(int degree, int count, bool periodic, int n_points) {
   std::vector<double> t(static_cast<std::size_t>(n_points));
   if (periodic) {
@@ -47,8 +108,8 @@ std::vector<double> paper_parameters(int degree, int count, bool periodic, int n
 }
 
 ReparameterMap::ReparameterMap(int degree_from, int count_from, int degree_to, int count_to,
-                               bool periodic)
-    : periodic_(periodic) {
+                               bool periodic, bool scaled)
+    : periodic_(periodic), scaled_(scaled && !periodic) {
   tau_.resize(static_cast<std::size_t>(count_to));
   g_.resize(static_cast<std::size_t>(count_to));
   if (periodic) {
@@ -62,6 +123,15 @@ ReparameterMap::ReparameterMap(int degree_from, int count_from, int degree_to, i
     }
     return;
   }
+  if (scaled_) {
+    // Domain onto domain: [0, count_from - degree_from] to [0, count_to - degree_to].
+    scale_ = domain_end(degree_to, count_to, false) / domain_end(degree_from, count_from, false);
+    for (int l = 0; l < count_to; ++l) {
+      g_[l] = greville(degree_to, count_to, false, l);
+      tau_[l] = std::min(g_[l] / scale_, domain_end(degree_from, count_from, false));
+    }
+    return;
+  }
   const double a = count_to > 1 ? static_cast<double>(count_from - 1) / (count_to - 1) : 0.0;
   for (int l = 0; l < count_to; ++l) {
     tau_[l] = greville_at(degree_from, count_from, false, a * l);
@@ -71,6 +141,7 @@ ReparameterMap::ReparameterMap(int degree_from, int count_from, int degree_to, i
 
 double ReparameterMap::operator()(double t) const {
   if (periodic_) return wrap(offset_to_ + (t - offset_from_) * scale_, period_to_);
+  if (scaled_) return std::clamp(t * scale_, g_.front(), g_.back());
   const std::size_t n = tau_.size();
   if (n == 1) return g_[0];
   if (t <= tau_.front()) return g_.front();

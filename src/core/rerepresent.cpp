@@ -31,7 +31,7 @@ struct Geometry {
       : old_t(fit.parameters), interp(count, degree + 1, periodic) {
     const Curve& old = fit.curve;
     const int w = degree + 1, wo = old.degree + 1;
-    const ReparameterMap map(old.degree, old.count(), degree, count, periodic);
+    const ReparameterMap map(old.degree, old.count(), degree, count, periodic, fit.scaled);
     if (target.empty()) {
       params.resize(n_data);
       for (std::size_t k = 0; k < n_data; ++k) params[k] = map(fit.parameters[k]);
@@ -65,7 +65,7 @@ struct Geometry {
   }
 };
 
-using GeometryKey = std::tuple<int, int, bool, int, int, std::size_t, bool>;
+using GeometryKey = std::tuple<int, int, bool, int, int, std::size_t, bool, bool>;
 thread_local detail::ThreadCache<GeometryKey, Geometry> geometries(std::size_t{64} << 20);
 
 // The cached geometry when it was made for the same old parameters and target; a fresh one
@@ -74,7 +74,8 @@ const Geometry& geometry(const CurveFit& fit, std::size_t n_data, int degree, in
                          bool periodic, std::span<const double> target,
                          std::unique_ptr<Geometry>& uncached) {
   const Curve& old = fit.curve;
-  const GeometryKey key{old.degree, old.count(), periodic, degree, count, n_data, !target.empty()};
+  const GeometryKey key{old.degree, old.count(), periodic,        degree,
+                        count,      n_data,      !target.empty(), fit.scaled};
   const Geometry& G = geometries.get(key, [&] {
     return std::make_unique<Geometry>(fit, n_data, degree, count, periodic, target);
   });

@@ -116,10 +116,10 @@ constexpr std::size_t kBlock = 16;  // curves whose searches chain their startin
 // With `previous` (fits of an earlier pass over the same curves), a curve not in `todo`
 // keeps its previous fit unless its predecessor's count changed, in which case it is
 // refitted too, exactly as a full pass would. Returns how many curves were fitted.
-template <class GetPoints>
-std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, const CurveFitOptions& base,
-                       const std::vector<int>& hints, int threads, std::vector<CurveFit>& fits,
-                       const std::vector<char>* todo) {
+template <class GetPoints, class GetPositions>
+std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, GetPositions&& positions_of,
+                       const CurveFitOptions& base, const std::vector<int>& hints, int threads,
+                       std::vector<CurveFit>& fits, const std::vector<char>* todo) {
   const bool have_hints = hints.size() == n_curves;
   const std::size_t n_blocks = (n_curves + kBlock - 1) / kBlock;
   fits.resize(n_curves);
@@ -137,6 +137,7 @@ std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, const CurveF
       if (must) {
         CurveFitOptions co = base;
         co.hint = have_hints ? hints[i] : previous;
+        co.positions = positions_of(i);
         fits[i] = fit_curve(points_of(i), co);
         ++fitted[b];
       }
@@ -158,8 +159,8 @@ std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, const CurveF
 // (README "Count search"). Bounded: a scan that would cost more point-solves than
 // kExactMaximumBudget times the stage's points stops the pass (the fast counts stay), so a
 // single row of 10^6 points needing 1000 control points is not searched one count at a time.
-template <class GetPoints>
-void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of,
+template <class GetPoints, class GetPositions>
+void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of, GetPositions&& positions_of,
                    const CurveFitOptions& base) {
   if (base.search != CountSearch::kFast) return;
   std::vector<std::size_t> order;
@@ -182,10 +183,44 @@ void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of,
     if (cost > budget) break;
     budget -= cost;
     const int fast_solves = fits[i].solves;
+    linear.positions = positions_of(i);
     fits[i] = fit_curve(points_of(i), linear);
     fits[i].solves += fast_solves;
     largest = std::max(largest, fits[i].curve.count());
   }
+}
+
+// One curve on `count` control points. At the paper's parameters: rerepresent() (METHOD.md
+// 4). At positions (METHOD.md 7.4), where the curve has at least `count` points: the least
+// squares fit of its points with `count` control points at the same positions, if it holds.
+// Every curve's coefficients are then one linear map of its points, so curves whose points
+// vary smoothly from one to the next have control points that do too, and the transverse
+// stage needs few; the minimal counts differing from curve to curve would otherwise leave
+// each curve's own approximation error in its control points. Where the refit does not hold
+// (the count's fit is not always within the bound when a smaller one is), rerepresent().
+Rerepresentation represent_one(const CurveFit& fit, std::span<const Point> points,
+                               std::span<const double> positions, int degree, int count,
+                               bool periodic, const Point& bound, std::span<const double> target) {
+  if (fit.scaled && !positions.empty() && fit.curve.degree == degree &&
+      points.size() >= static_cast<std::size_t>(count) && fit.curve.count() != count) {
+    CurveFit refit;
+    try {
+      refit = fit_curve_with_count(points, degree, periodic, count, positions);
+    } catch (const Error&) {  // singular at these positions
+      refit.curve.control.clear();
+    }
+    if (!refit.curve.control.empty() && (refit.max_deviation.array() <= bound.array()).all() &&
+        (target.empty() || std::equal(target.begin(), target.end(), refit.parameters.begin(),
+                                      refit.parameters.end()))) {
+      Rerepresentation r;
+      r.curve = std::move(refit.curve);
+      r.parameters = std::move(refit.parameters);
+      r.max_deviation = refit.max_deviation;
+      r.holds = true;
+      return r;
+    }
+  }
+  return rerepresent(fit, points, degree, count, periodic, bound, target);
 }
 
 // Re-represents every curve on one common count, starting at max(degree + 1, counts) and
@@ -198,22 +233,29 @@ struct Represented {
   std::vector<double> shared_parameters;
 };
 
-template <class GetPoints>
-Represented represent(std::size_t n_curves, GetPoints&& points_of,
+template <class GetPoints, class GetPositions>
+Represented represent(std::size_t n_curves, GetPoints&& points_of, GetPositions&& positions_of,
                       const std::vector<CurveFit>& fits, int degree, bool periodic,
                       const Point& bound, int threads, bool shared_params, std::size_t max_points,
+                      std::span<const double> shared_positions,
                       std::vector<Rerepresentation>* reuse, int reuse_count,
                       const std::vector<char>* dirty) {
   Represented st;
   int common = degree + 1;
   for (const auto& f : fits) common = std::max(common, f.curve.count());
   st.first_common = common;
-  const int cap = static_cast<int>(std::max<std::size_t>(max_points, common)) + degree + 8;
+  // At positions a count above the curves' points is not worth trying: the paper's rule,
+  // which fit() falls back to, does better there.
+  const bool at_positions = n_curves > 0 && !positions_of(0).empty();
+  const int cap =
+      static_cast<int>(std::max<std::size_t>(max_points, common)) + (at_positions ? 0 : degree + 8);
   st.curves.resize(n_curves);
   while (true) {
     if (shared_params)
       st.shared_parameters =
-          paper_parameters(degree, common, periodic, static_cast<int>(max_points));
+          shared_positions.empty()
+              ? paper_parameters(degree, common, periodic, static_cast<int>(max_points))
+              : scaled_parameters(degree, common, periodic, shared_positions);
     // Stop the pass at the first curve that fails: the count is raised whatever the others
     // do, so the outcome (the first count at which every curve holds) is the same.
     std::atomic<bool> failed{false};
@@ -222,9 +264,10 @@ Represented represent(std::size_t n_curves, GetPoints&& points_of,
       if (reuse && common == reuse_count && !(*dirty)[i]) {
         st.curves[i] = std::move((*reuse)[i]);
       } else {
-        st.curves[i] = rerepresent(fits[i], points_of(i), degree, common, periodic, bound,
-                                   shared_params ? std::span<const double>(st.shared_parameters)
-                                                 : std::span<const double>());
+        st.curves[i] =
+            represent_one(fits[i], points_of(i), positions_of(i), degree, common, periodic, bound,
+                          shared_params ? std::span<const double>(st.shared_parameters)
+                                        : std::span<const double>());
       }
       if (!st.curves[i].holds) failed.store(true, std::memory_order_relaxed);
     });
@@ -240,6 +283,31 @@ Represented represent(std::size_t n_curves, GetPoints&& points_of,
   st.common = common;
   for (const auto& c : st.curves) st.repaired += c.repair_rounds > 0 ? 1 : 0;
   return st;
+}
+
+// Positions across the rows for the geometric rules: each column's normalized_positions(),
+// averaged over the columns whose points do not all coincide (Piegl and Tiller's averaging for
+// surface interpolation, The NURBS Book 9.2.5); uniform when every column is one point.
+template <class GetPoints>
+std::vector<double> averaged_positions(std::size_t n_curves, GetPoints&& points_of,
+                                       Parametrization rule, bool periodic) {
+  std::vector<double> sum;
+  std::size_t used = 0;
+  for (std::size_t i = 0; i < n_curves; ++i) {
+    const auto pts = points_of(i);
+    if (sum.empty()) sum.assign(pts.size(), 0.0);
+    bool coincide = true;
+    for (const Point& p : pts) coincide = coincide && p == pts[0];
+    if (coincide) continue;
+    const auto f = normalized_positions(pts, rule, periodic);
+    for (std::size_t j = 0; j < f.size(); ++j) sum[j] += f[j];
+    ++used;
+  }
+  if (used == 0) return normalized_positions(points_of(0), Parametrization::kUniform, periodic);
+  for (double& f : sum) f /= static_cast<double>(used);
+  if (!periodic) sum.back() = 1.0;
+  sum.front() = 0.0;
+  return sum;
 }
 
 }  // namespace
@@ -275,16 +343,34 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   for (std::size_t j = 0; j < M; ++j) longest = std::max(longest, rows[j].size());
   auto row_points = [&](std::size_t j) { return rows[j]; };
 
+  // Positions of the points along their rows (none for the paper's rule): METHOD.md 7.4.
+  const bool geometric = rule_ != Parametrization::kPaper;
+  std::vector<double> row_positions;
+  if (geometric) {
+    row_positions.resize(rows.total_points());
+    parallel_for(M, threads_, [&](std::size_t j) {
+      const auto f = normalized_positions(rows[j], rule_, o_.closed_u);
+      std::copy(f.begin(), f.end(),
+                row_positions.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[j]));
+    });
+  }
+  auto row_positions_of = [&](std::size_t j) {
+    if (!geometric) return std::span<const double>();
+    return std::span<const double>(row_positions.data() + rows.offsets()[j], rows[j].size());
+  };
+
   // Curve stage on the rows (METHOD.md 3): all rows, or the changed ones and their chains.
   report("rows", 0, M);
-  const CurveFitOptions row_options{o_.degree_u, o_.closed_u, bound, o_.search};
+  CurveFitOptions row_options{o_.degree_u, o_.closed_u, bound, o_.search};
+  // Uniform positions depend on the row's length only, so rows of one length share them.
+  row_options.shared_positions = rule_ == Parametrization::kUniform;
   std::vector<CurveFit> fits;
   if (changed) fits = row_fits_;
-  rows_refitted_ =
-      fit_curves(M, row_points, row_options, o_.row_count_hints, threads_, fits, changed);
+  rows_refitted_ = fit_curves(M, row_points, row_positions_of, row_options, o_.row_count_hints,
+                              threads_, fits, changed);
   // `fast_fits` (the searches' own results) are what an update chains its hints from.
   std::vector<CurveFit> fast_fits = fits;
-  exact_maximum(fits, row_points, row_options);
+  exact_maximum(fits, row_points, row_positions_of, row_options);
   // Rows whose fit changed need a new re-representation.
   std::vector<char> dirty(M, 1);
   if (changed)
@@ -293,9 +379,9 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   report("rows", M, M);
 
   // Re-representation on the common count nu (METHOD.md 4).
-  Represented rs =
-      represent(M, row_points, fits, o_.degree_u, o_.closed_u, bound, threads_, false, longest,
-                changed ? &row_curves_ : nullptr, row_common_, changed ? &dirty : nullptr);
+  Represented rs = represent(M, row_points, row_positions_of, fits, o_.degree_u, o_.closed_u, bound,
+                             threads_, false, longest, {}, changed ? &row_curves_ : nullptr,
+                             row_common_, changed ? &dirty : nullptr);
   const int nu = rs.common;
 
   // Transverse stage: column i holds control point i of every row curve (METHOD.md 5).
@@ -306,14 +392,22 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   auto column_points = [&](std::size_t i) {
     return std::span<const Point>(columns.data() + i * M, M);
   };
+  // One position per row, shared by every column (the guarantee needs one v per row).
+  const std::vector<double> column_positions =
+      geometric
+          ? averaged_positions(static_cast<std::size_t>(nu), column_points, rule_, o_.closed_v)
+          : std::vector<double>();
+  auto column_positions_of = [&](std::size_t) { return std::span<const double>(column_positions); };
   report("columns", 0, static_cast<std::size_t>(nu));
-  const CurveFitOptions column_options{o_.degree_v, o_.closed_v, bound, o_.search};
+  CurveFitOptions column_options{o_.degree_v, o_.closed_v, bound, o_.search};
+  column_options.shared_positions = true;
   std::vector<CurveFit> column_fits;
-  fit_curves(static_cast<std::size_t>(nu), column_points, column_options, o_.column_count_hints,
-             threads_, column_fits, nullptr);
-  exact_maximum(column_fits, column_points, column_options);
-  Represented cs = represent(static_cast<std::size_t>(nu), column_points, column_fits, o_.degree_v,
-                             o_.closed_v, bound, threads_, true, M, nullptr, 0, nullptr);
+  fit_curves(static_cast<std::size_t>(nu), column_points, column_positions_of, column_options,
+             o_.column_count_hints, threads_, column_fits, nullptr);
+  exact_maximum(column_fits, column_points, column_positions_of, column_options);
+  Represented cs = represent(static_cast<std::size_t>(nu), column_points, column_positions_of,
+                             column_fits, o_.degree_v, o_.closed_v, bound, threads_, true, M,
+                             column_positions, nullptr, 0, nullptr);
   report("columns", static_cast<std::size_t>(nu), static_cast<std::size_t>(nu));
   const int nv = cs.common;
 
@@ -382,6 +476,7 @@ FitResult SurfaceFitter::finish(Attempt& at, int tightenings, const DeviationChe
   r.degree_v = o_.degree_v;
   r.closed_u = o_.closed_u;
   r.closed_v = o_.closed_v;
+  r.parametrization = rule_;
   r.tightenings = tightenings;
   r.roundoff = roundoff_;
   r.seconds =
@@ -397,6 +492,23 @@ double now() {
 }  // namespace
 
 FitResult SurfaceFitter::fit(const Rows& rows) {
+  rule_ = o_.parametrization;
+  if (rule_ == Parametrization::kPaper) return fit_with_rule(rows);
+  // The geometric rules (METHOD.md 7.4) hold the tolerance on their own where they can; where
+  // they cannot (a re-representation or the final check fails: positions whose systems are
+  // singular near interpolation, rows whose parameters disagree), the paper's rule, which
+  // always can, fits instead, and the report names the rule used.
+  try {
+    FitResult r = fit_with_rule(rows);
+    if (r.report.within_tolerance) return r;
+  } catch (const Error& e) {
+    if (e.code() != ErrorCode::kToleranceNotMet) throw;
+  }
+  rule_ = Parametrization::kPaper;
+  return fit_with_rule(rows);
+}
+
+FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
   const double t0 = now();
   validate(rows, o_);
   centre(rows);
@@ -430,7 +542,8 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   const double t0 = now();
   validate(rows, o_);
   const BoundingBox box = bounding_box(rows);
-  if (!valid_ || rows.size() != centred_.size() || box.min != box_.min || box.max != box_.max)
+  if (!valid_ || rows.size() != centred_.size() || box.min != box_.min || box.max != box_.max ||
+      rule_ != o_.parametrization)
     return fit(rows);
   // Same box, so the same centre, round-off allowance and budget: refresh the edited rows.
   std::vector<char> mark(rows.size(), 0);
@@ -444,7 +557,13 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   valid_ = false;  // until the update completes
   centred_ = std::move(centred);
   threads_ = rows.total_points() < 20000 ? 1 : resolve_threads(o_.threads);
-  Attempt at = fit_once(bound_, &mark);
+  Attempt at;
+  try {
+    at = fit_once(bound_, &mark);
+  } catch (const Error& e) {
+    if (e.code() != ErrorCode::kToleranceNotMet) throw;
+    return fit(rows);  // fit() would have met the same failure first: do exactly what it does
+  }
   const DeviationCheck check =
       check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_);
   if (!check.within) return fit(rows);  // fit() would tighten: do exactly that

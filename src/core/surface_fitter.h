@@ -26,12 +26,14 @@ class SurfaceFitter {
 
  private:
   struct Attempt;
+  FitResult fit_with_rule(const Rows& rows);
   Attempt fit_once(const Point& bound, const std::vector<char>* changed);
   FitResult finish(Attempt& at, int tightenings, const struct DeviationCheck& check,
                    double seconds_start) const;
   void centre(const Rows& rows);
 
   FitOptions o_;
+  Parametrization rule_ = Parametrization::kPaper;  // the rule of the last fit (fit())
   int threads_ = 1;
   BoundingBox box_;
   Point centre_ = Point::Zero();

@@ -51,6 +51,7 @@ json report_to_json(const FitReport& r) {
   // sfit's extras.
   j["degree"] = {r.degree_u, r.degree_v};
   j["closed"] = {r.closed_u, r.closed_v};
+  j["parameters"] = std::string(to_string(r.parametrization));
   j["column_counts"] = r.column_counts;
   j["raised"] = {r.raised_u, r.raised_v};
   j["repaired"] = {r.repaired_rows, r.repaired_columns};
