@@ -61,6 +61,8 @@ class BandedLeastSquares {
   std::vector<Rotation> log_;
   std::vector<std::size_t> equation_end_;
   bool back_substitute(const std::vector<Point>& z, std::vector<Point>& x) const;
+  template <int W>
+  void add_open(int first, const double* coef, const Point& rhs, double weight);
 };
 
 }  // namespace sfit::detail
