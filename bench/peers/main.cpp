@@ -153,6 +153,8 @@ int run(int argc, char** argv) {
       peer = sfit::peers::make_sfit(rows, tol, closed_u, 1);
     } else if (name == "sfit-mt") {
       peer = sfit::peers::make_sfit(rows, tol, closed_u, 0);
+    } else if (name == "sfit-chord") {
+      peer = sfit::peers::make_sfit(rows, tol, closed_u, 1, sfit::Parametrization::kChord);
     } else if (name == "occt-grid") {
       if (!sfit::peers::is_grid(rows)) throw std::runtime_error("occt-grid needs a grid");
       peer = sfit::peers::make_occt_grid(rows, tol);

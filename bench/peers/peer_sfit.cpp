@@ -28,8 +28,10 @@ void occt_knots(int degree, int count, bool periodic, TColStd_Array1OfReal& k,
 
 class SfitPeer final : public Peer {
  public:
-  SfitPeer(const Rows& rows, double t, bool closed_u, int threads) : rows_(rows) {
+  SfitPeer(const Rows& rows, double t, bool closed_u, int threads, Parametrization rule)
+      : rows_(rows) {
     options_.degree_u = options_.degree_v = 3;
+    options_.parametrization = rule;
     options_.tolerance = Point::Constant(t);
     options_.closed_u = closed_u;
     options_.threads = threads;
@@ -69,7 +71,8 @@ class SfitPeer final : public Peer {
            std::to_string(*std::max_element(r.column_counts.begin(), r.column_counts.end())) +
            ", raised " + std::to_string(r.raised_u) + "/" + std::to_string(r.raised_v) +
            ", tightenings " + std::to_string(r.tightenings) + ", solves " +
-           std::to_string(r.solves);
+           std::to_string(r.solves) + ", " + std::string(to_string(r.parametrization)) +
+           " parameters";
   }
 
  private:
@@ -80,8 +83,9 @@ class SfitPeer final : public Peer {
 
 }  // namespace
 
-std::unique_ptr<Peer> make_sfit(const Rows& rows, double t, bool closed_u, int threads) {
-  return std::make_unique<SfitPeer>(rows, t, closed_u, threads);
+std::unique_ptr<Peer> make_sfit(const Rows& rows, double t, bool closed_u, int threads,
+                                Parametrization rule) {
+  return std::make_unique<SfitPeer>(rows, t, closed_u, threads, rule);
 }
 
 bool is_grid(const Rows& rows) {

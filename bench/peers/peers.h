@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "sfit/parametrization.h"
 #include "sfit/rows.h"
 
 namespace sfit::peers {
@@ -28,7 +29,8 @@ class Peer {
 };
 
 /// sfit::fit_surface, bicubic, T = (t, t, t) per axis, `threads` as FitOptions::threads.
-std::unique_ptr<Peer> make_sfit(const Rows& rows, double t, bool closed_u, int threads);
+std::unique_ptr<Peer> make_sfit(const Rows& rows, double t, bool closed_u, int threads,
+                                Parametrization rule = Parametrization::kPaper);
 
 /// OpenCASCADE GeomAPI_PointsToBSplineSurface on the grid (all rows of equal length),
 /// DegMin = DegMax = 3, C2, Tol3D = t (a distance at OCCT's own chord-length parameters).

@@ -34,9 +34,10 @@ SHARED_SETS = [  # (file, kind)
     ("teapot_body.rows", "ragged"), ("iea3p4mw_blade_ragged9.rows", "ragged"),
     ("iea15mw_blade_af50.rows", "ragged"),
 ]
-GRID_PEERS = ["sfit", "sfit-mt", "scipy-grid", "sisl-grid", "occt-grid"]
-RAGGED_PEERS = ["sfit", "sfit-mt", "occt-loft"]
-LABEL = {"sfit": "sfit (1 thread)", "sfit-mt": "sfit (2 threads)", "scipy-grid":
+GRID_PEERS = ["sfit", "sfit-chord", "sfit-mt", "scipy-grid", "sisl-grid", "occt-grid"]
+RAGGED_PEERS = ["sfit", "sfit-chord", "sfit-mt", "occt-loft"]
+LABEL = {"sfit": "sfit (1 thread)", "sfit-chord": "sfit --parameters chord (1 thread)",
+         "sfit-mt": "sfit (2 threads)", "scipy-grid":
          "SciPy RectBivariateSpline", "sisl-grid": "SISL s1966", "occt-grid":
          "OCCT PointsToBSplineSurface", "occt-loft": "OCCT PointsToBSpline + AppSurf"}
 PEER_OF_SFIT = "sfit"  # the sfit time the ratios are taken against (single thread, as the peers)
@@ -259,8 +260,9 @@ def make_table(results):
 def make_compact(results):
     """One line per data set and tolerance, one column per tool: time, coefficients, max
     closest distance, points out of tolerance."""
-    cols = ["sfit", "scipy-grid", "sisl-grid", "occt-grid", "occt-loft"]
-    names = {"sfit": "sfit (1 thread)", "scipy-grid": "SciPy", "sisl-grid": "SISL",
+    cols = ["sfit", "sfit-chord", "scipy-grid", "sisl-grid", "occt-grid", "occt-loft"]
+    names = {"sfit": "sfit (1 thread)", "sfit-chord": "sfit chord (1 thread)",
+             "scipy-grid": "SciPy", "sisl-grid": "SISL",
              "occt-grid": "OCCT grid", "occt-loft": "OCCT loft"}
     by_case = {}
     for r in results:
@@ -290,14 +292,21 @@ def make_compact(results):
 
 
 def make_targets(results):
-    """Issue 5's targets, each with the ratio measured in this run."""
+    """Issue 5's targets, each with the ratio measured in this run, for sfit's default and for
+    sfit with chord-length parameters."""
+    return "\n".join(make_targets_for(results, p) for p in ("sfit", "sfit-chord"))
+
+
+def make_targets_for(results, which):
+    """The targets table for the sfit variant `which`."""
     by_case = {}
     for r in results:
         by_case.setdefault((r["set"], r["tol_label"]), {})[r["peer"]] = r
-    out = ["| target | data set | T | sfit | fastest peer | ratio | OCCT | ratio | "
+    out = [f"Targets for {LABEL[which]}:", "",
+           "| target | data set | T | sfit | fastest peer | ratio | OCCT | ratio | "
            "sfit within T | met |", "|---|---|---|---|---|---|---|---|---|---|"]
     for (name, tl), rs in by_case.items():
-        sfit = rs.get(PEER_OF_SFIT)
+        sfit = rs.get(which)
         if not sfit or "median_s" not in sfit:
             continue
         held = sfit.get("check", {}).get("out_of_tolerance") == 0
