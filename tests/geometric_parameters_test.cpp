@@ -189,6 +189,39 @@ TEST(GeometricParameters, WholeFitFallsBackToThePaperAndSaysSo) {
                            paper.surface.control.size() * sizeof(Point)));
 }
 
+TEST(GeometricParameters, FewestKeepsTheSmallestSurfaceOfTheFourRules) {
+  const Rows rows = uneven_rows(20, 50);
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, 1e-3);
+  long smallest = 0;
+  Parametrization smallest_rule = Parametrization::kPaper;
+  for (Parametrization rule : {Parametrization::kPaper, Parametrization::kUniform,
+                               Parametrization::kChord, Parametrization::kCentripetal}) {
+    o.parametrization = rule;
+    const FitResult r = fit_surface(rows, o);
+    ASSERT_TRUE(r.report.within_tolerance);
+    const long size = static_cast<long>(r.surface.count_u) * r.surface.count_v;
+    if (smallest == 0 || size < smallest) {
+      smallest = size;
+      smallest_rule = r.report.parametrization;
+    }
+  }
+  o.parametrization = Parametrization::kFewest;
+  const FitResult best = fit_surface(rows, o);
+  EXPECT_TRUE(best.report.within_tolerance);
+  EXPECT_EQ(static_cast<long>(best.surface.count_u) * best.surface.count_v, smallest);
+  EXPECT_EQ(best.report.parametrization, smallest_rule);
+  EXPECT_NE(best.report.parametrization, Parametrization::kPaper);  // uneven rows: not the paper's
+  // IncrementalFit with kFewest refits in full, so it stays the full fit's.
+  IncrementalFit inc(rows, o);
+  inc.move_point(4, 10, rows[4][10] + Point(0.001, 0, 0.002));
+  const FitResult full = fit_surface(inc.rows(), o);
+  ASSERT_EQ(inc.result().surface.control.size(), full.surface.control.size());
+  EXPECT_EQ(0, std::memcmp(inc.result().surface.control.data(), full.surface.control.data(),
+                           full.surface.control.size() * sizeof(Point)));
+  EXPECT_EQ(inc.result().report.parametrization, full.report.parametrization);
+}
+
 TEST(GeometricParameters, ResultDoesNotDependOnThreadCount) {
   const Rows rows = uneven_rows(200, 130);  // > 20000 points: the parallel path
   FitOptions o;

@@ -76,8 +76,9 @@ TEST(Parametrization, ReparameterMapSendsSamplesToNewGreville) {
 }
 
 TEST(Parametrization, NamesRoundTrip) {
-  for (Parametrization p : {Parametrization::kPaper, Parametrization::kUniform,
-                            Parametrization::kChord, Parametrization::kCentripetal}) {
+  for (Parametrization p :
+       {Parametrization::kPaper, Parametrization::kUniform, Parametrization::kChord,
+        Parametrization::kCentripetal, Parametrization::kFewest}) {
     Parametrization q = Parametrization::kPaper;
     ASSERT_TRUE(parse_parametrization(to_string(p), q));
     EXPECT_EQ(q, p);

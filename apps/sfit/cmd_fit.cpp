@@ -154,7 +154,10 @@ int run_fit(const FitArgs& a) {
   say(fmt::format(
       "surface {} x {} control points (rows need {}..{}, columns {}..{}); {} parameters", r.count_u,
       r.count_v, *rmin, *rmax, *cmin, *cmax, to_string(r.parametrization)));
-  if (r.parametrization != o.parametrization)
+  if (o.parametrization == Parametrization::kFewest)
+    say(fmt::format("{} parameters gave the fewest control points of the four rules",
+                    to_string(r.parametrization)));
+  else if (r.parametrization != o.parametrization)
     say(fmt::format("note: {} parameters could not hold the tolerance here; the paper's did",
                     to_string(o.parametrization)));
   double used = 0;
@@ -215,8 +218,9 @@ void add_fit_command(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"fast", "linear"}));
   c->add_option("--parameters", args->parameters,
                 "how points get parameters, along and across the rows: paper (SFIT01's, by the "
-                "point's index; default), uniform (index), chord (chord length) or centripetal")
-      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal"}));
+                "point's index; default), uniform (index), chord (chord length), centripetal, or "
+                "fewest (tries the four, keeps the fewest control points)")
+      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest"}));
   c->add_option("--threads", args->threads, "threads (0: all cores); results do not depend on it")
       ->check(CLI::Range(0, 4096));
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");
@@ -241,6 +245,7 @@ void add_fit_command(CLI::App& app, Runner& run) {
       "  sfit fit blade.rows --closed u --tol 0.001 -o blade.json --report blade-report.json\n"
       "  sfit fit terrain.rows --degree-u 3 --degree-v 2 --tol 1,1,0.1 -o dem.json\n"
       "  cat scan.rows | sfit fit - --tol-rel 1e-4 -o scan.json\n"
+      "  sfit fit scan_lines.rows --parameters chord -o scan.json   # unevenly sampled rows\n"
       "The summary goes to stderr; exit code 7 means the tolerance could not be held\n"
       "(nothing is written then).");
   c->callback([args, &run] { run = [args] { return run_fit(*args); }; });

@@ -16,9 +16,12 @@ enum class Parametrization {
   kUniform,      ///< METHOD.md 7.4: equal steps in the point's index, t = L j / (N-1)
   kChord,        ///< METHOD.md 7.4: proportional to the chord length along the row
   kCentripetal,  ///< METHOD.md 7.4: proportional to the square root of the chord length
+  /// Not a rule: fit_surface() tries the four above and keeps the surface with the fewest
+  /// control points (the report names the rule used). Costs the four fits.
+  kFewest,
 };
 
-/// "paper", "uniform", "chord", "centripetal".
+/// "paper", "uniform", "chord", "centripetal", "fewest".
 std::string_view to_string(Parametrization p);
 /// The inverse of to_string(); false if `name` is none of them.
 bool parse_parametrization(std::string_view name, Parametrization& out);

@@ -28,13 +28,16 @@ std::string_view to_string(Parametrization p) {
       return "chord";
     case Parametrization::kCentripetal:
       return "centripetal";
+    case Parametrization::kFewest:
+      return "fewest";
   }
   return "paper";
 }
 
 bool parse_parametrization(std::string_view name, Parametrization& out) {
-  for (Parametrization p : {Parametrization::kPaper, Parametrization::kUniform,
-                            Parametrization::kChord, Parametrization::kCentripetal})
+  for (Parametrization p :
+       {Parametrization::kPaper, Parametrization::kUniform, Parametrization::kChord,
+        Parametrization::kCentripetal, Parametrization::kFewest})
     if (name == to_string(p)) {
       out = p;
       return true;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "parallel.h"
@@ -492,7 +493,29 @@ double now() {
 }  // namespace
 
 FitResult SurfaceFitter::fit(const Rows& rows) {
-  rule_ = o_.parametrization;
+  if (o_.parametrization != Parametrization::kFewest) return fit_rule(rows, o_.parametrization);
+  // Every rule in turn; the surface with the fewest control points wins (the first rule on a
+  // tie, the paper's first). update() then refits in full (valid_ is cleared), which is what
+  // this does.
+  const double t0 = now();
+  std::optional<FitResult> best;
+  for (Parametrization rule : {Parametrization::kPaper, Parametrization::kUniform,
+                               Parametrization::kChord, Parametrization::kCentripetal}) {
+    FitResult r = fit_rule(rows, rule);
+    const auto size = [](const FitResult& f) {
+      return static_cast<long>(f.surface.count_u) * f.surface.count_v;
+    };
+    if (!best || (r.report.within_tolerance && !best->report.within_tolerance) ||
+        (r.report.within_tolerance == best->report.within_tolerance && size(r) < size(*best)))
+      best = std::move(r);
+  }
+  valid_ = false;
+  best->report.seconds = now() - t0;
+  return std::move(*best);
+}
+
+FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
+  rule_ = requested;
   if (rule_ == Parametrization::kPaper) return fit_with_rule(rows);
   // The geometric rules (METHOD.md 7.4) hold the tolerance on their own where they can; where
   // they cannot (a re-representation or the final check fails: positions whose systems are
@@ -543,7 +566,7 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   validate(rows, o_);
   const BoundingBox box = bounding_box(rows);
   if (!valid_ || rows.size() != centred_.size() || box.min != box_.min || box.max != box_.max ||
-      rule_ != o_.parametrization)
+      rule_ != o_.parametrization)  // (never equal for kFewest: full refits)
     return fit(rows);
   // Same box, so the same centre, round-off allowance and budget: refresh the edited rows.
   std::vector<char> mark(rows.size(), 0);

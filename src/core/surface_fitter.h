@@ -26,6 +26,7 @@ class SurfaceFitter {
 
  private:
   struct Attempt;
+  FitResult fit_rule(const Rows& rows, Parametrization requested);
   FitResult fit_with_rule(const Rows& rows);
   Attempt fit_once(const Point& bound, const std::vector<char>* changed);
   FitResult finish(Attempt& at, int tightenings, const struct DeviationCheck& check,
