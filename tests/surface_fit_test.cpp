@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "reference_eval.h"
+#include "sfit/deviation.h"
 #include "sfit/error.h"
 #include "sfit/io/surface_json.h"
 #include "test_support.h"
@@ -190,6 +191,28 @@ TEST(SurfaceFit, ResultDoesNotDependOnThreadCount) {
                            one.surface.control.size() * sizeof(Point)));
   EXPECT_EQ(one.u, two.u);
   EXPECT_EQ(one.report.row_counts, two.report.row_counts);
+  // The check alone, in row blocks on two threads: the same answer as one pass, also with a
+  // non-finite deviation and ties for the worst point.
+  for (bool poison : {false, true}) {
+    Rows data = rows;
+    if (poison)
+      data = test::sample_rows(
+          [](double s, double t) { return s > 0.5 && t > 0.7 ? Point(NAN, 0, 0) : saddle(s, t); },
+          std::vector<int>(150, 160));
+    const DeviationCheck a =
+        check_deviation(one.surface, data, one.u, one.v, o.tolerance, 1e-12, 1);
+    const DeviationCheck b =
+        check_deviation(one.surface, data, one.u, one.v, o.tolerance, 1e-12, 2);
+    SCOPED_TRACE(poison);
+    EXPECT_EQ(a.within, b.within);
+    EXPECT_EQ(a.worst_row, b.worst_row);
+    EXPECT_EQ(a.worst_index, b.worst_index);
+    EXPECT_EQ(a.worst_ratio, b.worst_ratio);
+    EXPECT_EQ(a.max_deviation, b.max_deviation);
+    if (poison) {
+      EXPECT_FALSE(a.within);
+    }
+  }
 }
 
 TEST(SurfaceFit, InvalidInputAndOptionsAreRejectedWithPlace) {

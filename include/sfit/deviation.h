@@ -21,7 +21,10 @@ struct DeviationCheck {
 /// Evaluates the surface at every data point's assigned parameters (u per point, in the
 /// order of rows.points(); v per row) and measures the per-axis deviation.
 /// A point is within if |S - D|_a <= tolerance_a + roundoff on every axis a.
+/// `threads` (0: all cores) splits the rows into fixed blocks; the result is the same for any
+/// thread count.
 DeviationCheck check_deviation(const Surface& surface, const Rows& rows, std::span<const double> u,
-                               std::span<const double> v, const Point& tolerance, double roundoff);
+                               std::span<const double> v, const Point& tolerance, double roundoff,
+                               int threads = 1);
 
 }  // namespace sfit

@@ -4,17 +4,22 @@
 #include <cmath>
 #include <limits>
 
+#include "parallel.h"
 #include "sfit/basis.h"
 
 namespace sfit {
 
-DeviationCheck check_deviation(const Surface& s, const Rows& rows, std::span<const double> u,
-                               std::span<const double> v, const Point& tol, double roundoff) {
+namespace {
+
+// The check of rows [j0, j1).
+DeviationCheck check_rows(const Surface& s, const Rows& rows, std::span<const double> u,
+                          std::span<const double> v, const Point& tol, double roundoff,
+                          std::size_t j0, std::size_t j1) {
   DeviationCheck out;
   std::array<double, kMaxDegree + 1> bv, bu;
   std::vector<Point> iso(static_cast<std::size_t>(s.count_u));
   const auto& off = rows.offsets();
-  for (std::size_t j = 0; j < rows.size(); ++j) {
+  for (std::size_t j = j0; j < j1; ++j) {
     // The iso-curve v = v_j: its control points Q_i = sum_l B_l(v_j) P_il, once per row.
     const int fv = eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
     for (int i = 0; i < s.count_u; ++i) {
@@ -50,6 +55,40 @@ DeviationCheck check_deviation(const Surface& s, const Rows& rows, std::span<con
         out.worst_index = static_cast<long>(k);
         out.worst_deviation = d;
       }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+DeviationCheck check_deviation(const Surface& s, const Rows& rows, std::span<const double> u,
+                               std::span<const double> v, const Point& tol, double roundoff,
+                               int threads) {
+  threads = detail::resolve_threads(threads);
+  const std::size_t M = rows.size();
+  if (threads <= 1 || rows.total_points() < 20000)
+    return check_rows(s, rows, u, v, tol, roundoff, 0, M);
+  // Fixed blocks of rows, merged in order as one pass would: the largest ratio first met
+  // wins, except that a non-finite deviation, once met, is reported (the last one met).
+  constexpr std::size_t kBlocks = 64;
+  const std::size_t per = (M + kBlocks - 1) / kBlocks;
+  const std::size_t n_blocks = (M + per - 1) / per;
+  std::vector<DeviationCheck> part(n_blocks);
+  detail::parallel_for(n_blocks, threads, [&](std::size_t b) {
+    part[b] = check_rows(s, rows, u, v, tol, roundoff, b * per, std::min(M, (b + 1) * per));
+  });
+  DeviationCheck out;
+  for (const DeviationCheck& r : part) {
+    out.within = out.within && r.within;
+    out.max_deviation = out.max_deviation.cwiseMax(r.max_deviation);
+    if (r.worst_row < 0) continue;
+    const bool not_finite = !r.worst_deviation.allFinite();
+    if (out.worst_row < 0 || not_finite || r.worst_ratio > out.worst_ratio) {
+      out.worst_ratio = r.worst_ratio;
+      out.worst_row = r.worst_row;
+      out.worst_index = r.worst_index;
+      out.worst_deviation = r.worst_deviation;
     }
   }
   return out;

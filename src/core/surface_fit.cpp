@@ -554,7 +554,7 @@ FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
     } else {
       valid_ = false;  // the kept state is not the first attempt's
     }
-    check = check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_);
+    check = check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_, threads_);
     if (check.within || tightenings == 3) break;
     ++tightenings;
   }
@@ -588,7 +588,7 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
     return fit(rows);  // fit() would have met the same failure first: do exactly what it does
   }
   const DeviationCheck check =
-      check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_);
+      check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_, threads_);
   if (!check.within) return fit(rows);  // fit() would tighten: do exactly that
   valid_ = true;
   return finish(at, 0, check, t0);
