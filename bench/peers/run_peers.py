@@ -120,6 +120,10 @@ def main():
     ap.add_argument("--repeats", type=int, default=11)
     ap.add_argument("--budget", type=float, default=10.0, help="stop repeating after this long")
     ap.add_argument("--only", default="", help="comma-separated data set names to run")
+    ap.add_argument("--peers", default="", help="comma-separated tools to run (e.g. sfit-chord)")
+    ap.add_argument("--merge-into", default="", help="an earlier results.json: this run's rows "
+                    "replace its rows of the same data set, tolerance and tool, and the tables "
+                    "are made from the merged results")
     ap.add_argument("--tables-from", default="", help="only remake the tables and the plot "
                     "from an earlier results.json")
     args = ap.parse_args()
@@ -176,6 +180,8 @@ def main():
         # Closed rows go the lofting way: the grid fitters know no periodic rows (a user would
         # repeat the seam point, which the loft path does).
         peers = GRID_PEERS if d["grid"] and not closed else RAGGED_PEERS
+        if args.peers:
+            peers = [p for p in peers if p in args.peers.split(",")]
         for tlabel, tol in tols:
             for peer in peers:
                 key = (series, tlabel, peer)
@@ -208,6 +214,14 @@ def main():
                     json.dump({"machine": machine(), "args": vars(args), "results": results}, f,
                               indent=1)
 
+    if args.merge_into:
+        with open(args.merge_into) as f:
+            old = json.load(f)["results"]
+        new = {(r["set"], r["tol_label"], r["peer"]): r for r in results}
+        merged = [new.pop((r["set"], r["tol_label"], r["peer"]), r) for r in old]
+        results = merged + list(new.values())
+        with open(os.path.join(args.out, "results.json"), "w") as f:
+            json.dump({"machine": machine(), "args": vars(args), "results": results}, f, indent=1)
     write_outputs(results, args.out)
 
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sfit::detail {
 
@@ -169,6 +170,19 @@ std::size_t BandedLeastSquares::bytes() const {
          sizeof(double) * (band_.size() + side_.size() + tri_.size() + h_.size() + f_.size()) +
          sizeof(Point) * z_.size() + sizeof(Rotation) * log_.capacity() +
          sizeof(std::size_t) * equation_end_.capacity();
+}
+
+double BandedLeastSquares::pivot_ratio() const {
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (int c = 0; c < nb_; ++c) {
+    lo = std::min(lo, std::abs(band_[static_cast<std::size_t>(c) * w_]));
+    hi = std::max(hi, std::abs(band_[static_cast<std::size_t>(c) * w_]));
+  }
+  for (int a = 0; a < tail_; ++a) {
+    lo = std::min(lo, std::abs(tri_[static_cast<std::size_t>(a) * tail_ + a]));
+    hi = std::max(hi, std::abs(tri_[static_cast<std::size_t>(a) * tail_ + a]));
+  }
+  return hi > 0.0 ? lo / hi : 0.0;
 }
 
 bool BandedLeastSquares::solve(std::vector<Point>& x) const {

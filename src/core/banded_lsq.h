@@ -40,6 +40,9 @@ class BandedLeastSquares {
   /// Solves for right-hand sides rhs[0 .. equations-1] (one per add(), in order) with the
   /// recorded rotations and the factor R. `z` is work space. Same return value as solve().
   bool replay(const Point* rhs, std::vector<Point>& x, std::vector<Point>& z) const;
+  /// Smallest over largest |R_ii|: a cheap lower bound on 1 / condition number of the
+  /// equations added so far (0 when a pivot is zero).
+  double pivot_ratio() const;
   /// Bytes held (for caches).
   std::size_t bytes() const;
 

@@ -286,6 +286,17 @@ Represented represent(std::size_t n_curves, GetPoints&& points_of, GetPositions&
   return st;
 }
 
+// Whether every control point lies within the data's bounding box grown by its diagonal on
+// every side. The surface lies in the convex hull of its control points, so it cannot swing
+// farther than that from the data between the points it was checked at.
+bool net_is_bounded(const Surface& s, const BoundingBox& box) {
+  const double d = box.diagonal();
+  const Point lo = box.min - Point::Constant(d), hi = box.max + Point::Constant(d);
+  for (const Point& p : s.control)
+    if (!((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all())) return false;
+  return true;
+}
+
 // Positions across the rows for the geometric rules: each column's normalized_positions(),
 // averaged over the columns whose points do not all coincide (Piegl and Tiller's averaging for
 // surface interpolation, The NURBS Book 9.2.5); uniform when every column is one point.
@@ -519,11 +530,12 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
   if (rule_ == Parametrization::kPaper) return fit_with_rule(rows);
   // The geometric rules (METHOD.md 7.4) hold the tolerance on their own where they can; where
   // they cannot (a re-representation or the final check fails: positions whose systems are
-  // singular near interpolation, rows whose parameters disagree), the paper's rule, which
-  // always can, fits instead, and the report names the rule used.
+  // singular near interpolation, rows whose parameters disagree), or where the control net
+  // leaves the data's box grown by its diagonal (a surface that swings between the points it
+  // holds), the paper's rule, which always can, fits instead; the report names the rule used.
   try {
     FitResult r = fit_with_rule(rows);
-    if (r.report.within_tolerance) return r;
+    if (r.report.within_tolerance && net_is_bounded(r.surface, box_)) return r;
   } catch (const Error& e) {
     if (e.code() != ErrorCode::kToleranceNotMet) throw;
   }
@@ -590,8 +602,11 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   const DeviationCheck check =
       check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_, threads_);
   if (!check.within) return fit(rows);  // fit() would tighten: do exactly that
+  FitResult out = finish(at, 0, check, t0);
+  if (rule_ != Parametrization::kPaper && !net_is_bounded(out.surface, box_))
+    return fit(rows);  // fit() falls back to the paper's rule: do exactly that
   valid_ = true;
-  return finish(at, 0, check, t0);
+  return out;
 }
 
 }  // namespace detail

@@ -146,9 +146,12 @@ TEST(ObjFreeform, FileEvaluatesToTheSurface) {
     ASSERT_EQ(refs.size(), static_cast<std::size_t>(nu) * nv);
     EXPECT_EQ(nu, s.full_count_u());
     // A periodic direction references its first control points again: closed exactly.
-    if (s.periodic_u)
+    if (s.periodic_u) {
       for (int j = 0; j < nv; ++j)
-        for (int i = 0; i < du; ++i) EXPECT_EQ(refs[j * nu + s.count_u + i], refs[j * nu + i]);
+        for (int i = 0; i < du; ++i) {
+          EXPECT_EQ(refs[j * nu + s.count_u + i], refs[j * nu + i]);
+        }
+    }
     double worst = 0;
     for (int a = 0; a <= 20; ++a)
       for (int b = 0; b <= 20; ++b) {

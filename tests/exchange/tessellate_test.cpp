@@ -60,7 +60,9 @@ TEST(Tessellate, ClosedDirectionsAreWatertight) {
     const std::size_t want =
         (s.periodic_u ? 0 : 2 * m.quads_v()) + (s.periodic_v ? 0 : 2 * m.quads_u());
     EXPECT_EQ(boundary, want);
-    if (s.periodic_u && s.periodic_v) EXPECT_EQ(boundary, 0u);
+    if (s.periodic_u && s.periodic_v) {
+      EXPECT_EQ(boundary, 0u);
+    }
   }
 }
 
@@ -116,7 +118,9 @@ TEST(Tessellate, NormalsAreUnitAndFollowSuCrossSv) {
         Point d[6];
         s.derivatives(m.u[a], m.v[b], d);
         const Point x = d[1].cross(d[2]);
-        if (x.norm() > 1e-6 * d[1].norm() * d[2].norm()) EXPECT_GT(n.dot(x), 0);
+        if (x.norm() > 1e-6 * d[1].norm() * d[2].norm()) {
+          EXPECT_GT(n.dot(x), 0);
+        }
       }
     // Triangles wind counter-clockwise about the normals (at the default density: a coarse
     // mesh of a sharp leading edge may fold).
