@@ -66,7 +66,8 @@ struct Geometry {
 };
 
 using GeometryKey = std::tuple<int, int, bool, int, int, std::size_t, bool, bool>;
-thread_local detail::ThreadCache<GeometryKey, Geometry> geometries(std::size_t{64} << 20);
+// 16 MiB per thread, as curve_fit.cpp's collocations.
+thread_local detail::ThreadCache<GeometryKey, Geometry> geometries(std::size_t{16} << 20);
 
 // The cached geometry when it was made for the same old parameters and target; a fresh one
 // (in `uncached`) otherwise, e.g. for a caller's own parameters.
