@@ -293,6 +293,7 @@ def make_compact(results):
             elif "median_s" not in r:
                 why = r.get("skipped") or r.get("error") or ""
                 cells.append("skipped" if why.startswith("skipped") else
+                             "timed out" if why.startswith("timed out") else
                              "failed" if why else "")
             else:
                 k = r.get("check", {})
