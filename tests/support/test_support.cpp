@@ -48,6 +48,23 @@ Rows sample_rows(const std::function<Point(double, double)>& f, const std::vecto
   return rows;
 }
 
+namespace {
+// Every temp_dir() made by this test program, removed when it exits (set SFIT_KEEP_TEST_DIRS
+// to keep them for a look after a failure).
+struct TempDirs {
+  std::vector<std::filesystem::path> made;
+  ~TempDirs() {
+    if (std::getenv("SFIT_KEEP_TEST_DIRS")) return;
+    std::error_code ec;
+    for (const auto& d : made) std::filesystem::remove_all(d, ec);
+  }
+};
+TempDirs& temp_dirs() {
+  static TempDirs dirs;
+  return dirs;
+}
+}  // namespace
+
 std::string temp_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "sfit";
@@ -57,6 +74,7 @@ std::string temp_dir() {
                    ("sfit-test-" + name + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  temp_dirs().made.push_back(dir);
   return dir.string();
 }
 
