@@ -633,14 +633,21 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
   // singular near interpolation, rows whose parameters disagree), or where the surface swings
   // away between the points it holds (stays_near_the_data()), the paper's rule, which always
   // can, fits instead; the report names the rule used.
+  // report.seconds covers all of it: the check below, and a failed attempt before a fallback.
+  const double t0 = now();
   try {
     FitResult r = fit_with_rule(rows);
-    if (r.report.within_tolerance && stays_near_the_data(r.surface, box_)) return r;
+    if (r.report.within_tolerance && stays_near_the_data(r.surface, box_)) {
+      r.report.seconds = now() - t0;
+      return r;
+    }
   } catch (const Error& e) {
     if (e.code() != ErrorCode::kToleranceNotMet) throw;
   }
   rule_ = Parametrization::kPaper;
-  return fit_with_rule(rows);
+  FitResult r = fit_with_rule(rows);
+  r.report.seconds = now() - t0;
+  return r;
 }
 
 FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
