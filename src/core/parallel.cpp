@@ -5,6 +5,8 @@
 namespace sfit::detail {
 namespace {
 
+// A pool thread, or a thread inside run(): a parallel loop nested in either runs serially
+// (and never re-locks `use_`, which the calling thread may hold).
 thread_local bool on_pool_thread = false;
 
 // Threads made on first use and kept until exit; one parallel loop at a time.
@@ -34,7 +36,9 @@ class Pool {
       ++generation_;
     }
     wake_.notify_all();
+    on_pool_thread = true;
     work();
+    on_pool_thread = false;
     std::unique_lock<std::mutex> lock(m_);
     done_.wait(lock, [&] { return running_ == 0; });
     work_ = nullptr;
