@@ -36,7 +36,7 @@ std::vector<double> normalized_positions(std::span<const Point> points, Parametr
 /// Parameters of points at `positions` (normalized_positions()) on a uniform curve of
 /// `degree` with `count` control points: t = f (count - degree) open, and for closed curves
 /// t = o + f count with the offset o of the periodic Greville rule (0 for odd, 1/2 for even
-/// degree). Uniform positions of a closed row give exactly paper_parameters().
+/// degree). Uniform positions of a closed row give paper_parameters() (to rounding).
 std::vector<double> scaled_parameters(int degree, int count, bool periodic,
                                       std::span<const double> positions);
 
