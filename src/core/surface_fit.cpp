@@ -436,11 +436,15 @@ void SurfaceFitter::centre(const Rows& rows) {
   threads_ = threads_for(rows, o_.threads);
   box_ = box_of(rows, threads_);
   centre_ = 0.5 * (box_.min + box_.max);
+  copy_centred(rows);
+  roundoff_ = kRoundoffRelative * box_.diagonal();
+}
+
+void SurfaceFitter::copy_centred(const Rows& rows) {
   centred_ = rows;
   parallel_for(rows.size(), threads_, [&](std::size_t j) {
     for (Point& p : centred_.mutable_row(j)) p -= centre_;
   });
-  roundoff_ = kRoundoffRelative * box_.diagonal();
 }
 
 SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
@@ -683,22 +687,17 @@ FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
 FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>& changed) {
   const double t0 = now();
   validate(rows, o_);
-  const BoundingBox box = bounding_box(rows);
+  const int threads = threads_for(rows, o_.threads);
+  const BoundingBox box = box_of(rows, threads);
   if (!valid_ || rows.size() != centred_.size() || box.min != box_.min || box.max != box_.max ||
       rule_ != o_.parametrization)  // (never equal for kFewest: full refits)
     return fit(rows);
   // Same box, so the same centre, round-off allowance and budget: refresh the edited rows.
   std::vector<char> mark(rows.size(), 0);
-  Rows centred;
-  centred.reserve(rows.total_points(), rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    for (const Point& p : rows[j]) centred.push_point(p - centre_);
-    centred.end_row();
-  }
   for (std::size_t j : changed) mark.at(j) = 1;
   valid_ = false;  // until the update completes
-  centred_ = std::move(centred);
-  threads_ = rows.total_points() < 20000 ? 1 : resolve_threads(o_.threads);
+  threads_ = threads;
+  copy_centred(rows);
   Attempt at;
   try {
     at = fit_once(bound_, &mark);

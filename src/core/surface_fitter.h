@@ -32,6 +32,7 @@ class SurfaceFitter {
   FitResult finish(Attempt& at, int tightenings, const struct DeviationCheck& check,
                    double seconds_start) const;
   void centre(const Rows& rows);
+  void copy_centred(const Rows& rows);  // centred_ = rows - centre_
 
   FitOptions o_;
   Parametrization rule_ = Parametrization::kPaper;  // the rule of the last fit (fit())
