@@ -4,14 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <random>
 
-#include "reference_eval.h"
 #include "sfit/error.h"
 #include "sfit/incremental.h"
-#include "sfit/io/surface_json.h"
 #include "sfit/parametrization.h"
 #include "sfit/surface_fit.h"
 #include "test_support.h"
@@ -20,6 +17,7 @@ namespace sfit {
 namespace {
 
 using std::numbers::pi;
+using test::reference_deviation;
 
 constexpr Parametrization kGeometric[] = {Parametrization::kUniform, Parametrization::kChord,
                                           Parametrization::kCentripetal};
@@ -62,19 +60,6 @@ Point tube(double s, double t) {  // closed rows (s round), open sequence
 }
 Point tube_along(double s, double t) {  // open rows, closed sequence
   return tube(t, s);
-}
-
-// Largest per-axis deviation at the assigned parameters by the textbook evaluator on the
-// JSON form.
-Point reference_deviation(const FitResult& fit, const Rows& rows) {
-  const auto ref = test::reference_from_json_text(io::surface_to_json(fit.surface).dump());
-  Point worst = Point::Zero();
-  for (std::size_t j = 0; j < rows.size(); ++j)
-    for (std::size_t k = 0; k < rows[j].size(); ++k) {
-      const auto s = ref.evaluate(fit.u[rows.offsets()[j] + k], fit.v[j]);
-      worst = worst.cwiseMax((Point(s[0], s[1], s[2]) - rows[j][k]).cwiseAbs());
-    }
-  return worst;
 }
 
 TEST(GeometricParameters, EveryRuleHoldsTheToleranceInAllFourTopologies) {
@@ -198,9 +183,7 @@ TEST(GeometricParameters, WholeFitFallsBackToThePaperAndSaysSo) {
   const FitResult centripetal = fit_surface(rows, o);
   ASSERT_TRUE(centripetal.report.within_tolerance);
   EXPECT_EQ(centripetal.report.parametrization, Parametrization::kPaper);
-  ASSERT_EQ(centripetal.surface.control.size(), paper.surface.control.size());
-  EXPECT_EQ(0, std::memcmp(centripetal.surface.control.data(), paper.surface.control.data(),
-                           paper.surface.control.size() * sizeof(Point)));
+  test::expect_same_surface(centripetal, paper);
 }
 
 TEST(GeometricParameters, ZeroToleranceInterpolatesWithEveryRule) {
@@ -244,9 +227,7 @@ TEST(GeometricParameters, FewestKeepsTheSmallestSurfaceOfTheFourRules) {
   IncrementalFit inc(rows, o);
   inc.move_point(4, 10, rows[4][10] + Point(0.001, 0, 0.002));
   const FitResult full = fit_surface(inc.rows(), o);
-  ASSERT_EQ(inc.result().surface.control.size(), full.surface.control.size());
-  EXPECT_EQ(0, std::memcmp(inc.result().surface.control.data(), full.surface.control.data(),
-                           full.surface.control.size() * sizeof(Point)));
+  test::expect_same_surface(inc.result(), full);
   EXPECT_EQ(inc.result().report.parametrization, full.report.parametrization);
 }
 
@@ -296,11 +277,7 @@ TEST(GeometricParameters, ResultDoesNotDependOnThreadCount) {
   const FitResult one = fit_surface(rows, o);
   o.threads = 2;
   const FitResult two = fit_surface(rows, o);
-  ASSERT_EQ(one.surface.control.size(), two.surface.control.size());
-  EXPECT_EQ(0, std::memcmp(one.surface.control.data(), two.surface.control.data(),
-                           one.surface.control.size() * sizeof(Point)));
-  EXPECT_EQ(one.u, two.u);
-  EXPECT_EQ(one.v, two.v);
+  test::expect_same_surface(one, two);
 }
 
 TEST(GeometricParameters, IncrementalEditsGiveExactlyTheFullRefit) {
@@ -321,11 +298,7 @@ TEST(GeometricParameters, IncrementalEditsGiveExactlyTheFullRefit) {
       const FitResult full = fit_surface(inc.rows(), o);
       const FitResult& r = inc.result();
       SCOPED_TRACE(std::string(to_string(rule)) + " edit " + std::to_string(edit));
-      ASSERT_EQ(r.surface.control.size(), full.surface.control.size());
-      EXPECT_EQ(0, std::memcmp(r.surface.control.data(), full.surface.control.data(),
-                               full.surface.control.size() * sizeof(Point)));
-      EXPECT_EQ(r.u, full.u);
-      EXPECT_EQ(r.v, full.v);
+      test::expect_same_surface(r, full);
       EXPECT_EQ(r.report.parametrization, full.report.parametrization);
       EXPECT_TRUE(r.report.within_tolerance);
       if (HasFailure()) return;

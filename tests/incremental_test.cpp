@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 
 #include "sfit/error.h"
@@ -20,12 +19,7 @@ Point wavy(double s, double t) {
 void expect_same_as_full_fit(const IncrementalFit& inc, const FitOptions& o) {
   const FitResult full = fit_surface(inc.rows(), o);
   const FitResult& r = inc.result();
-  ASSERT_EQ(r.surface.count_u, full.surface.count_u);
-  ASSERT_EQ(r.surface.count_v, full.surface.count_v);
-  EXPECT_EQ(0, std::memcmp(r.surface.control.data(), full.surface.control.data(),
-                           full.surface.control.size() * sizeof(Point)));
-  EXPECT_EQ(r.u, full.u);
-  EXPECT_EQ(r.v, full.v);
+  test::expect_same_surface(r, full);
   EXPECT_EQ(r.report.row_counts, full.report.row_counts);
   EXPECT_EQ(r.report.column_counts, full.report.column_counts);
   EXPECT_EQ(r.report.max_deviation, full.report.max_deviation);

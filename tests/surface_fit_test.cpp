@@ -3,19 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <numbers>
 
-#include "reference_eval.h"
 #include "sfit/deviation.h"
 #include "sfit/error.h"
-#include "sfit/io/surface_json.h"
 #include "test_support.h"
 
 namespace sfit {
 namespace {
 
 using std::numbers::pi;
+using test::reference_deviation;
 using test::sample_rows;
 
 Point saddle(double s, double t) {
@@ -34,20 +32,6 @@ Point torus(double s, double t) {
   const double a = 2 * pi * s, b = 2 * pi * t;
   return Point((R + r * std::cos(a)) * std::cos(b), (R + r * std::cos(a)) * std::sin(b),
                r * std::sin(a));
-}
-
-// Max per-axis deviation at the assigned parameters, by the independent textbook evaluator
-// applied to the JSON contract form (every `stride`-th point).
-Point reference_deviation(const FitResult& fit, const Rows& rows, int stride = 1) {
-  const auto ref = test::reference_from_json_text(io::surface_to_json(fit.surface).dump());
-  Point worst = Point::Zero();
-  for (std::size_t j = 0; j < rows.size(); ++j)
-    for (std::size_t k = 0; k < rows[j].size(); k += stride) {
-      const auto s = ref.evaluate(fit.u[rows.offsets()[j] + k], fit.v[j]);
-      const Point d = (Point(s[0], s[1], s[2]) - rows[j][k]).cwiseAbs();
-      worst = worst.cwiseMax(d);
-    }
-  return worst;
 }
 
 struct Topology {
@@ -186,10 +170,7 @@ TEST(SurfaceFit, ResultDoesNotDependOnThreadCount) {
   const FitResult one = fit_surface(rows, o);
   o.threads = 2;
   const FitResult two = fit_surface(rows, o);
-  ASSERT_EQ(one.surface.control.size(), two.surface.control.size());
-  EXPECT_EQ(0, std::memcmp(one.surface.control.data(), two.surface.control.data(),
-                           one.surface.control.size() * sizeof(Point)));
-  EXPECT_EQ(one.u, two.u);
+  test::expect_same_surface(one, two);
   EXPECT_EQ(one.report.row_counts, two.report.row_counts);
   // The check alone, in row blocks on two threads: the same answer as one pass, also with a
   // non-finite deviation and ties for the worst point.

@@ -9,11 +9,14 @@
 
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "reference_eval.h"
 #include "sfit/io/rows_reader.h"
+#include "sfit/io/surface_json.h"
 
 namespace sfit::test {
 
@@ -106,6 +109,27 @@ Run run_cli(const std::string& args, const std::string& stdin_text) {
   r.err = read_file(err);
   std::filesystem::remove_all(dir);
   return r;
+}
+
+Point reference_deviation(const FitResult& fit, const Rows& rows, int stride) {
+  const auto ref = reference_from_json_text(io::surface_to_json(fit.surface).dump());
+  Point worst = Point::Zero();
+  for (std::size_t j = 0; j < rows.size(); ++j)
+    for (std::size_t k = 0; k < rows[j].size(); k += static_cast<std::size_t>(stride)) {
+      const auto s = ref.evaluate(fit.u[rows.offsets()[j] + k], fit.v[j]);
+      worst = worst.cwiseMax((Point(s[0], s[1], s[2]) - rows[j][k]).cwiseAbs());
+    }
+  return worst;
+}
+
+void expect_same_surface(const FitResult& a, const FitResult& b) {
+  ASSERT_EQ(a.surface.count_u, b.surface.count_u);
+  ASSERT_EQ(a.surface.count_v, b.surface.count_v);
+  ASSERT_EQ(a.surface.control.size(), b.surface.control.size());
+  EXPECT_EQ(0, std::memcmp(a.surface.control.data(), b.surface.control.data(),
+                           a.surface.control.size() * sizeof(Point)));
+  EXPECT_EQ(a.u, b.u);
+  EXPECT_EQ(a.v, b.v);
 }
 
 }  // namespace sfit::test

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "sfit/rows.h"
+#include "sfit/surface_fit.h"
 
 namespace sfit::test {
 
@@ -33,5 +34,11 @@ Run run_cli(const std::string& args, const std::string& stdin_text = "");
 std::string temp_dir();
 std::string read_file(const std::string& path);
 void write_file(const std::string& path, const std::string& text);
+
+/// Largest per-axis deviation of every `stride`-th point from the fit at its assigned (u, v),
+/// by the independent textbook evaluator (reference_eval.h) on the JSON contract form.
+Point reference_deviation(const FitResult& fit, const Rows& rows, int stride = 1);
+/// Expects (GoogleTest) the same surface bit for bit: counts, control points, u and v.
+void expect_same_surface(const FitResult& a, const FitResult& b);
 
 }  // namespace sfit::test
