@@ -210,9 +210,7 @@ def main():
                     f"out {row['check'].get('out_of_tolerance')}")
                 print(f"[{time.time() - started:6.0f} s] {name} {tlabel} {peer}: {status}",
                       file=sys.stderr, flush=True)
-                with open(os.path.join(args.out, "results.json"), "w") as f:
-                    json.dump({"machine": machine(), "args": vars(args), "results": results}, f,
-                              indent=1)
+                save_results(args, results)
 
     if args.merge_into:
         with open(args.merge_into) as f:
@@ -220,17 +218,29 @@ def main():
         new = {(r["set"], r["tol_label"], r["peer"]): r for r in results}
         merged = [new.pop((r["set"], r["tol_label"], r["peer"]), r) for r in old]
         results = merged + list(new.values())
-        with open(os.path.join(args.out, "results.json"), "w") as f:
-            json.dump({"machine": machine(), "args": vars(args), "results": results}, f, indent=1)
+        save_results(args, results)
     write_outputs(results, args.out)
 
 
+def write_text(path, text):
+    """Writes through a temporary file and a rename: never a half-written file."""
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def save_results(args, results):
+    write_text(os.path.join(args.out, "results.json"),
+               json.dumps({"machine": machine(), "args": vars(args), "results": results},
+                          indent=1))
+
+
 def write_outputs(results, out):
-    table = make_table(results) + "\n" + make_targets(results)
-    with open(os.path.join(out, "table.md"), "w") as f:
-        f.write(table)
-    with open(os.path.join(out, "summary.md"), "w") as f:
-        f.write(make_compact(results) + "\n" + make_targets(results))
+    targets = make_targets(results)
+    table = make_table(results) + "\n" + targets
+    write_text(os.path.join(out, "table.md"), table)
+    write_text(os.path.join(out, "summary.md"), make_compact(results) + "\n" + targets)
     print(table)
     plot(results, os.path.join(out, "time_vs_points.png"))
 
@@ -385,7 +395,8 @@ def plot(results, path):
         ax.legend(fontsize=8)
     axes[0].set_ylabel("fit time, median (s)")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path + ".tmp", dpi=110, format="png")
+    os.replace(path + ".tmp", path)
 
 
 if __name__ == "__main__":
