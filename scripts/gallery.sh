@@ -1,11 +1,10 @@
 #!/usr/bin/env bash
-# Makes the README's picture gallery, docs/gallery/*.png, from the shared data sets: blade,
-# teapot body, hull and terrain, each fitted once with 'sfit fit' and drawn in the shaded,
-# zebra and deviation modes (the deviations are the fit report's own), plus one row picture.
+# Makes the picture gallery of docs/pictures.md, docs/gallery/*.png, from data sets in
+# examples/: blade, ring body, hull and terrain, each fitted once with 'sfit fit' and drawn in
+# the shaded, zebra and deviation modes (the deviations are the fit report's own), plus one
+# row picture.
 #
 # Usage: scripts/gallery.sh [BUILD_DIR]     (default: build; configured and built if needed)
-#   SFIT_SHARED_DATA=folder   where the shared .rows files are (default: ../shared/data);
-#                             the bundled copies in examples/ stand in for blade and hull.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 build="${1:-build}"
@@ -14,15 +13,14 @@ if [ ! -x "$sfit" ] || ! "$sfit" render --help >/dev/null 2>&1; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSFIT_BUILD_RENDER=ON
   cmake --build "$build" -j "$(nproc)" --target sfit_cli
 fi
-data="${SFIT_SHARED_DATA:-../shared/data}"
 out=docs/gallery
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$out"
 
-# find NAME: the shared data set, else its bundled copy, else nothing.
+# find NAME: the data set in examples/, else nothing.
 find_data() {
-  if [ -f "$data/$1" ]; then echo "$data/$1"; elif [ -f "examples/$1" ]; then echo "examples/$1"; fi
+  if [ -f "examples/$1" ]; then echo "examples/$1"; fi
 }
 
 # picture NAME FILE FIT_OPTIONS... -- PICTURE_OPTIONS...
@@ -43,9 +41,9 @@ picture() {
 }
 
 picture blade "$(find_data iea3p4mw_blade_ragged9.rows)" --closed u -- --up x --view 200,30
-picture teapot "$(find_data teapot_body.rows)" --closed u -- --view 30,30
+picture body "$(find_data ring_body.rows)" --closed u -- --view 30,30
 picture hull "$(find_data ship_px121_stations.rows)" -- --view 150,20 --stripes 10
-picture terrain "$(find_data volcano.rows)" --tol 3 -- --exaggerate 2 --view 210,35 --stripes 8
+picture terrain "$(find_data height_field.rows)" --tol 3 -- --exaggerate 2 --view 210,35 --stripes 8
 
 blade="$(find_data iea3p4mw_blade_ragged9.rows)"
 "$sfit" render-rows "$blade" --row 4 --closed u --size 800x600 -o "$out/blade-row4.png"

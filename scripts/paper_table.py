@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Prints the README's paper-style results table and the count-search comparison.
+"""Prints the paper-style results table and the count-search comparison of docs/benchmarks.md.
 
   scripts/paper_table.py [SFIT_BINARY]     (default build/apps/sfit/sfit)
 
-For every shared data set (../shared/data, where present) and examples/table1_synthetic.rows:
+For every data set of examples/ (table1_synthetic.rows at the paper's absolute tolerances):
 the counts nu x nv, the max deviation reached (as a fraction of T), whether every point held,
 and the fit time (median of 3 runs, from the report). Then, for the same fits, how the
 default count search compares with the paper's linear search.
@@ -16,12 +16,12 @@ import tempfile
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sfit = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build/apps/sfit/sfit")
-shared = os.path.normpath(os.path.join(root, "..", "shared", "data"))
-SETS = [  # file, closed rows, where
+examples = os.path.join(root, "examples")
+SETS = [  # file, closed rows
     ("d150_wing.rows", True), ("iea15mw_blade_af50.rows", True), ("iea3p4mw_blade_ragged9.rows", True),
-    ("ship_px121_stations.rows", False), ("teapot_body.rows", True), ("teapot_handle.rows", True),
-    ("teapot_spout_small.rows", True), ("topobathy.rows", False), ("volcano.rows", False),
-    ("volcano_small.rows", False),
+    ("ship_px121_stations.rows", False), ("ring_body.rows", True), ("bent_tube.rows", True),
+    ("spout_tube.rows", True), ("topobathy.rows", False), ("height_field.rows", False),
+    ("height_field_small.rows", False),
 ]
 
 def run(path, args, search="fast"):
@@ -39,10 +39,9 @@ def used(r):
 
 jobs = []
 for name, closed in SETS:
-    p = os.path.join(shared, name)
-    if os.path.exists(p):
-        for rel in ("1e-2", "1e-3", "1e-4"):
-            jobs.append((name, p, ["--tol-rel", rel] + (["--closed", "u"] if closed else []), f"{rel} diag"))
+    p = os.path.join(examples, name)
+    for rel in ("1e-2", "1e-3", "1e-4"):
+        jobs.append((name, p, ["--tol-rel", rel] + (["--closed", "u"] if closed else []), f"{rel} diag"))
 t1 = os.path.join(root, "examples", "table1_synthetic.rows")
 for T in ("1", "10", "20", "100"):
     jobs.append(("table1_synthetic.rows (bicubic)", t1, ["--tol", T], f"T = {T}"))

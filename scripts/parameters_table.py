@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Prints the README's table of the four parameter rules (sfit fit --parameters).
+"""Prints the table of the four parameter rules (sfit fit --parameters) of docs/benchmarks.md.
 
   scripts/parameters_table.py [SFIT_BINARY]     (default build/apps/sfit/sfit)
 
-For every shared data set (../shared/data, where present), examples/table1_synthetic.rows and
+For every data set of examples/ and
 two generated sets of 10^5 points (bench/peers/make_sets.py: a terrain grid and unevenly
 sampled ragged rows, written to build/parameters_sets/): the control points nu x nv each rule
 gives, bicubic, default search, one thread, and the fit time from the report (median of 3).
@@ -18,15 +18,14 @@ import tempfile
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sfit = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build/apps/sfit/sfit")
-shared = os.path.normpath(os.path.join(root, "..", "shared", "data"))
+examples = os.path.join(root, "examples")
 RULES = ["paper", "uniform", "chord", "centripetal"]
-SETS = [(os.path.join(shared, f), c) for f, c in [
+SETS = [(os.path.join(examples, f), c) for f, c in [
     ("d150_wing.rows", True), ("iea15mw_blade_af50.rows", True),
     ("iea3p4mw_blade_ragged9.rows", True), ("ship_px121_stations.rows", False),
-    ("teapot_body.rows", True), ("teapot_handle.rows", True), ("teapot_spout_small.rows", True),
-    ("topobathy.rows", False), ("volcano.rows", False), ("volcano_small.rows", False)]]
-SETS = [s for s in SETS if os.path.exists(s[0])]
-SETS.append((os.path.join(root, "examples", "table1_synthetic.rows"), False))
+    ("ring_body.rows", True), ("bent_tube.rows", True), ("spout_tube.rows", True),
+    ("topobathy.rows", False), ("height_field.rows", False), ("height_field_small.rows", False),
+    ("table1_synthetic.rows", False)]]
 gen = os.path.join(root, "build", "parameters_sets")
 py = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
 subprocess.run([py, os.path.join(root, "bench", "peers", "make_sets.py"), gen,

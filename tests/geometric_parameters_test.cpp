@@ -237,9 +237,8 @@ TEST(GeometricParameters, SurfaceStaysNearTheDataBetweenThePoints) {
   // point that reached 1e9 between them. Ill-conditioned counts now fail, and a surface that
   // leaves the data's box by more than 1/10 of its diagonal where sfit samples it falls back to
   // the paper's rule: sampled far more densely here, every surface stays within 0.15.
-  std::vector<Rows> sets = {uneven_rows(20, 50)};
-  const std::string topo = test::shared_data("topobathy.rows");
-  if (!topo.empty()) sets.push_back(test::load_rows(topo));
+  const std::vector<Rows> sets = {uneven_rows(20, 50),
+                                  test::load_rows(test::example("topobathy.rows"))};
   for (const Rows& rows : sets)
     for (Parametrization rule : kGeometric)
       for (double rel : {1e-2, 1e-3}) {

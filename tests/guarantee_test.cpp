@@ -1,4 +1,4 @@
-// The guarantee (issue 2): on every shared data set, at 1e-2, 1e-3 and 1e-4 of the
+// The guarantee: on every data set of examples/, at 1e-2, 1e-3 and 1e-4 of the
 // bounding-box diagonal, with its closed flags, every data point is within T on every axis,
 // checked twice: by Surface::evaluate and by the independent textbook evaluator on the
 // JSON contract form.
@@ -15,20 +15,19 @@ namespace {
 struct DataSet {
   const char* file;
   bool closed_u;
-  bool bundled;  // also in examples/
 };
 const DataSet kSets[] = {
-    {"d150_wing.rows", true, true},
-    {"iea15mw_blade_af50.rows", true, false},
-    {"iea3p4mw_blade_ragged9.rows", true, true},
-    {"ship_px121_stations.rows", false, true},
-    {"teapot_body.rows", true, false},
-    {"teapot_handle.rows", true, false},
-    {"teapot_spout_small.rows", true, false},
-    {"topobathy.rows", false, false},
-    {"volcano.rows", false, false},
-    {"volcano_small.rows", false, false},
-    {"table1_synthetic.rows", false, true},
+    {"d150_wing.rows", true},
+    {"iea15mw_blade_af50.rows", true},
+    {"iea3p4mw_blade_ragged9.rows", true},
+    {"ship_px121_stations.rows", false},
+    {"ring_body.rows", true},
+    {"bent_tube.rows", true},
+    {"spout_tube.rows", true},
+    {"topobathy.rows", false},
+    {"height_field.rows", false},
+    {"height_field_small.rows", false},
+    {"table1_synthetic.rows", false},
 };
 
 void PrintTo(const DataSet& d, std::ostream* os) {
@@ -39,10 +38,7 @@ class Guarantee : public ::testing::TestWithParam<std::tuple<DataSet, double>> {
 
 TEST_P(Guarantee, EveryPointWithinTolerance) {
   const auto [set, fraction] = GetParam();
-  std::string path = test::shared_data(set.file);
-  if (path.empty() && set.bundled) path = test::example(set.file);
-  if (path.empty()) GTEST_SKIP() << set.file << " not found in ../shared/data";
-  const Rows rows = test::load_rows(path);
+  const Rows rows = test::load_rows(test::example(set.file));
   FitOptions o;
   o.closed_u = set.closed_u;
   o.tolerance = relative_tolerance(rows, fraction);

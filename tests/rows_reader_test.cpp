@@ -94,14 +94,15 @@ TEST(RowsReader, FileAndMissingFile) {
 }
 
 TEST(RowsReader, SharedDataSetsReadWithTheirDocumentedCounts) {
-  // Row and point counts from ../shared/data/README.md.
+  // Row and point counts as the files' headers state them.
   struct Expect {
     const char* file;
     std::size_t rows, points;
   };
   for (const Expect& e :
        {Expect{"ship_px121_stations.rows", 11, 90}, Expect{"iea3p4mw_blade_ragged9.rows", 9, 1836},
-        Expect{"d150_wing.rows", 4, 152}}) {
+        Expect{"d150_wing.rows", 4, 152}, Expect{"iea15mw_blade_af50.rows", 50, 9992},
+        Expect{"topobathy.rows", 91, 10920}}) {
     const auto f = read_rows(test::example(e.file));
     EXPECT_EQ(f.rows.size(), e.rows) << e.file;
     EXPECT_EQ(f.rows.total_points(), e.points) << e.file;

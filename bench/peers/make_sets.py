@@ -4,7 +4,7 @@
   make_sets.py OUT_DIR KIND N [KIND N ...]     KIND: grid | ragged
 
 grid N:   a terrain-like height field on a regular sqrt(N) x sqrt(N) grid, rows of constant x
-          (the layout of the shared volcano/topobathy sets), so every peer, SciPy's
+          (the layout of examples/height_field.rows and topobathy.rows), so every peer, SciPy's
           RectBivariateSpline included, can take it.
 ragged N: a curved, non-height-field sheet (a bulging half-tube) in about sqrt(N) rows whose
           lengths vary between 0.75 and 1.25 of the mean, unevenly spaced along each row.

@@ -4,7 +4,7 @@
   run_peers.py --bin build-peers/bench/peers/sfit_peers --out build-peers/peers
                [--max-points 1e7] [--cap 60] [--repeats 5] [--budget 10] [--only NAME,...]
 
-Data: the shared sets (../shared/data), examples/table1_synthetic.rows (T = 1 and 10 mm),
+Data: the data sets of examples/ (table1_synthetic.rows at T = 1 and 10 mm),
 and generated grids and ragged sets of 10^2 ... 10^7 points (make_sets.py, cached in OUT/data).
 Tolerance: 1e-2 and 1e-3 of the bounding-box diagonal (the same T for every tool), bicubic.
 Each tool runs in its own process (sfit_peers fit / scipy_peer.py), which times the fit alone
@@ -26,12 +26,12 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared", "data"))
-SHARED_SETS = [  # (file, kind)
-    ("volcano_small.rows", "grid"), ("volcano.rows", "grid"), ("topobathy.rows", "grid"),
+EXAMPLES = os.path.join(ROOT, "examples")
+DATA_SETS = [  # (file, kind)
+    ("height_field_small.rows", "grid"), ("height_field.rows", "grid"), ("topobathy.rows", "grid"),
     ("ship_px121_stations.rows", "ragged"), ("d150_wing.rows", "ragged"),
-    ("teapot_spout_small.rows", "ragged"), ("teapot_handle.rows", "ragged"),
-    ("teapot_body.rows", "ragged"), ("iea3p4mw_blade_ragged9.rows", "ragged"),
+    ("spout_tube.rows", "ragged"), ("bent_tube.rows", "ragged"),
+    ("ring_body.rows", "ragged"), ("iea3p4mw_blade_ragged9.rows", "ragged"),
     ("iea15mw_blade_af50.rows", "ragged"),
 ]
 GRID_PEERS = ["sfit", "sfit-chord", "sfit-mt", "scipy-grid", "sisl-grid", "occt-grid"]
@@ -146,10 +146,9 @@ def main():
         d = info(path)["diagonal"]
         return [("1e-2 diag", 1e-2 * d), ("1e-3 diag", 1e-3 * d)]
 
-    for f, kind in SHARED_SETS:
-        path = os.path.join(SHARED, f)
-        if os.path.exists(path):
-            cases.append((f[:-5], path, kind, closed_u(path), None, None))
+    for f, kind in DATA_SETS:
+        path = os.path.join(EXAMPLES, f)
+        cases.append((f[:-5], path, kind, closed_u(path), None, None))
     t1 = os.path.join(ROOT, "examples", "table1_synthetic.rows")
     cases.append(("table1_synthetic", t1, "ragged", False, [("1 mm", 1.0), ("10 mm", 10.0)], None))
     sizes = [n for n in (1e2, 1e3, 1e4, 1e5, 1e6, 1e7) if n <= args.max_points]

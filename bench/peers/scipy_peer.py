@@ -4,7 +4,7 @@
   scipy_peer.py DATA.rows TOL SURFACE_OUT.json [--repeats R] [--budget SECONDS]
 
 Applies to height fields on a rectilinear grid only (every row at one x, the same y values in
-every row: the shared volcano/topobathy sets and the generated grids). Prints one JSON object;
+every row: the height-field sets of examples/ and the generated grids). Prints one JSON object;
 the surface goes to SURFACE_OUT.json for `sfit_peers check` (the common checker).
 
 FITPACK has no maximum-deviation tolerance, only the smoothing factor s (sum of squared
@@ -62,7 +62,7 @@ def main(argv):
         return 1
     m, n = len(counts), counts[0]
     P = pts.reshape(m, n, 3)
-    # Either every row lies at one x and runs along y (volcano), or at one y running along x
+    # Either every row lies at one x and runs along y (height_field.rows), or at one y running along x
     # (topobathy); z is the height over that rectilinear (x, y) grid.
     for across, along in ((0, 1), (1, 0)):
         a, b = P[:, 0, across], P[0, :, along]

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # CI stage: build the libFuzzer targets (preset 'fuzz': clang, ASan + UBSan) and run each for
-# FUZZ_SECONDS (default 60) on a corpus seeded from ../shared/data, examples/ and
+# FUZZ_SECONDS (default 60) on a corpus seeded from the data sets of examples/ and
 # tests/bad_input/. Prints one summary line per target; fails if any target finds a crash,
 # a hang (a unit over 10 s), a leak or a sanitizer report. Crashing inputs are kept in
 # build-fuzz/artifacts/. Environment: FUZZ_SECONDS, FUZZ_WORK (default build-fuzz/run).
@@ -8,7 +8,6 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 seconds="${FUZZ_SECONDS:-60}"
 work="${FUZZ_WORK:-build-fuzz/run}"
-shared="${SFIT_SHARED_DATA:-$(cd .. && pwd)/shared/data}"
 start=$(date +%s)
 
 cmake --preset fuzz >/dev/null
@@ -20,7 +19,6 @@ cli=build-fuzz/apps/sfit/sfit
 rm -rf "$work"
 mkdir -p "$work"/{rows,fitter,surface_json} build-fuzz/artifacts
 sources=(tests/bad_input/*.rows examples/*.rows)
-[ -d "$shared" ] && sources+=("$shared"/*.rows)
 n=0
 for f in "${sources[@]}"; do
   n=$((n + 1))

@@ -100,7 +100,7 @@ class CadRoundTrip : public ::testing::TestWithParam<Format> {};
 void check_case(const FittedCase& c, Format f, const std::string& dir) {
   SCOPED_TRACE(c.name);
   const Surface& s = c.fit.surface;
-  const std::string path = dir + "/" + (c.bundled ? "" : "shared_") +
+  const std::string path = dir + "/" + (c.bundled ? "" : "data_") +
                            c.name.substr(c.name.find('/') + 1) +
                            (f == Format::kStep ? ".step" : ".igs");
   if (f == Format::kStep)
@@ -143,15 +143,10 @@ TEST_P(CadRoundTrip, BundledOpenAndClosedSurfacesReadBackExactly) {
   EXPECT_TRUE(open && u && v && uv) << "all four topologies must be covered";
 }
 
-TEST_P(CadRoundTrip, SharedDataSetsReadBackExactly) {
-  std::vector<std::string> missing;
-  const auto& all = test::fitted_cases(&missing);
-  if (!missing.empty() && missing.size() == 10)
-    GTEST_SKIP() << "shared data folder " << SFIT_SHARED_DATA << " not found";
+TEST_P(CadRoundTrip, DataSetsReadBackExactly) {
   const std::string dir = test::temp_dir();
-  for (const auto& c : all)
+  for (const auto& c : test::fitted_cases())
     if (!c.bundled) check_case(c, GetParam(), dir);
-  for (const auto& m : missing) std::printf("[ note     ] shared data set %s missing\n", m.c_str());
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, CadRoundTrip, ::testing::Values(Format::kStep, Format::kIges),

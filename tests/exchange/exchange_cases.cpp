@@ -78,20 +78,14 @@ const std::vector<FittedCase>& fitted_cases(std::vector<std::string>* missing) {
   static std::vector<std::string> absent;
   static const std::vector<FittedCase> cases = [] {
     std::vector<FittedCase> v = bundled_cases();
-    const std::vector<std::pair<std::string, bool>> shared = {
-        {"teapot_body", true},        {"teapot_handle", true},
-        {"teapot_spout_small", true}, {"iea15mw_blade_af50", true},
-        {"volcano_small", false},     {"volcano", false},
+    const std::vector<std::pair<std::string, bool>> more = {
+        {"ring_body", true},          {"bent_tube", true},
+        {"spout_tube", true},         {"iea15mw_blade_af50", true},
+        {"height_field_small", false}, {"height_field", false},
         {"topobathy", false},         {"iea3p4mw_blade_ragged9", true},
         {"d150_wing", true},          {"ship_px121_stations", false}};
-    for (const auto& [name, cu] : shared) {
-      const std::string path = shared_data(name + ".rows");
-      if (path.empty()) {
-        absent.push_back(name);
-        continue;
-      }
-      v.push_back(fit_case("shared/" + name, load_rows(path), cu, false, false));
-    }
+    for (const auto& [name, cu] : more)
+      v.push_back(fit_case("data/" + name, load_rows(example(name + ".rows")), cu, false, false));
     return v;
   }();
   if (missing) *missing = absent;

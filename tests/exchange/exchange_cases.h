@@ -1,5 +1,5 @@
-// The surfaces the exchange tests write: the bundled examples (always there), synthetic
-// closed-v and torus (closed uv) sets, and the shared data sets where ../shared/data exists.
+// The surfaces the exchange tests write: three small examples, synthetic closed-v and torus
+// (closed uv) sets, and the other data sets of examples/.
 #pragma once
 
 #include <string>
@@ -12,14 +12,15 @@ namespace sfit::test {
 struct FittedCase {
   std::string name;
   bool closed_u = false, closed_v = false;
-  bool bundled = true;  ///< false: from ../shared/data (may be missing)
+  bool bundled = true;  ///< true: the small must-pass cases; false: the other data sets
   Rows rows;
   FitResult fit;
   double diagonal = 0;  ///< of the surface's sampled bounding box
 };
 
 /// Every case whose data is present, fitted once (default tolerance 1e-3 of the diagonal),
-/// cached for the test program. `missing` gets the names of shared sets not found.
+/// cached for the test program. `missing` gets the names of data sets not found (none: all
+/// are in examples/, and a missing file is an error).
 const std::vector<FittedCase>& fitted_cases(std::vector<std::string>* missing = nullptr);
 
 /// The bundled/synthetic cases only: open, closed u, closed v, closed uv.

@@ -143,9 +143,8 @@ TEST(RenderCli, ErrorsNameTheOptionAndWriteNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/z.json"));
 }
 
-TEST(RenderCli, SharedTeapotClosedBodyHasNoGapAtItsSeam) {
-  const std::string teapot = shared_data("teapot_body.rows");
-  if (teapot.empty()) GTEST_SKIP() << "shared data teapot_body.rows not here";
+TEST(RenderCli, ClosedRingBodyHasNoGapAtItsSeam) {
+  const std::string teapot = example("ring_body.rows");
   const std::string dir = temp_dir();
   // Seen from above: the body's rim ring (closed rows) must be drawn all round, the seam too.
   const test::Run r = run_cli("fit '" + teapot + "' --closed u -q --png '" + dir +
