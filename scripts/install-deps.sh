@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
 # Installs every Debian package sfit needs to build, test and benchmark.
-# Usage: scripts/install-deps.sh            (run as root, or with sudo available)
+# Usage: scripts/install-deps.sh [--build-only]   (run as root, or with sudo available)
+#   --build-only   only what building and running sfit needs (scripts/deps/build.txt)
 # The package lists live in scripts/deps/*.txt, one package per line, one file per area,
 # so each part of the project states what it needs and why.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mapfile -t pkgs < <(cat "$here"/deps/*.txt | sed -e 's/#.*//' -e 's/[[:space:]]//g' | grep -v '^$' | sort -u)
+lists=("$here"/deps/*.txt)
+case "${1:-}" in
+  --build-only) lists=("$here/deps/build.txt") ;;
+  "") ;;
+  *) echo "usage: scripts/install-deps.sh [--build-only]" >&2; exit 2 ;;
+esac
+mapfile -t pkgs < <(cat "${lists[@]}" | sed -e 's/#.*//' -e 's/[[:space:]]//g' | grep -v '^$' | sort -u)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
