@@ -48,7 +48,7 @@ BENCHMARK(BM_FitRagged)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// The count search (METHOD.md 7.1): the paper's linear search, sfit's default, and the oracle
+// The count search (docs/method.md 7.1): the paper's linear search, sfit's default, and the oracle
 // (the counts of the final answer given in advance: one solve per curve).
 void search_bench(benchmark::State& state, const Rows& rows, Point tol) {
   FitOptions o;

@@ -74,7 +74,7 @@ TEST(CurveFit, GoldenCountsOnTheWave) {
   // minimality MinimalityOneFewerFails checks); a change here means the method changed.
   // They are higher than the curve's smoothness alone would need: the paper's parameters
   // follow the clamped Greville spacing (1/3, 2/3, 1, ... for a cubic) near the ends, so even
-  // x = 10 s is a kinked function of t there (METHOD.md 3: the rule looks only at indices).
+  // x = 10 s is a kinked function of t there (docs/method.md 3: the rule looks only at indices).
   const auto pts = wave(80);
   EXPECT_EQ(fit_curve(pts, {3, false, Point::Constant(0.05), CountSearch::kLinear}).curve.count(),
             15);

@@ -1,4 +1,4 @@
-// The parametrization rules beyond the paper (METHOD.md 7.4) in the curve stage and the whole
+// The parametrization rules beyond the paper (docs/method.md 7.4) in the curve stage and the whole
 // surface fit: the tolerance at every point, minimal counts at the positions, the fallback to
 // the paper's rule, and what the rules are for (fewer control points on uneven rows).
 #include <gtest/gtest.h>

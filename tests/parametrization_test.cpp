@@ -25,7 +25,7 @@ TEST(Parametrization, OpenEndsOnDomainAndGrevilleWhenInterpolating) {
 }
 
 TEST(Parametrization, EveryKnotSpanGetsAParameter) {
-  // METHOD.md 3: every non-empty knot span holds at least one t (Schoenberg-Whitney).
+  // docs/method.md 3: every non-empty knot span holds at least one t (Schoenberg-Whitney).
   for (int p = 1; p <= 5; ++p)
     for (int n = p + 1; n <= 30; ++n)
       for (int N = n; N <= n + 7; ++N) {

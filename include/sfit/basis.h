@@ -1,4 +1,4 @@
-// B-spline basis functions on the uniform knot vectors of knots.h (METHOD.md section 2).
+// B-spline basis functions on the uniform knot vectors of knots.h (docs/method.md section 2).
 #pragma once
 
 namespace sfit {

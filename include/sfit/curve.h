@@ -7,7 +7,7 @@
 
 namespace sfit {
 
-/// B-spline curve of `degree` with uniform knots (METHOD.md section 2). For a periodic curve
+/// B-spline curve of `degree` with uniform knots (docs/method.md section 2). For a periodic curve
 /// `control` holds the n distinct control points; the knots are implied by degree and count.
 struct Curve {
   int degree = 3;
@@ -17,7 +17,7 @@ struct Curve {
   int count() const { return static_cast<int>(control.size()); }
   /// Domain is [0, domain_end()].
   double domain_end() const;
-  /// Full knot vector (SURFACE_JSON.md storage for periodic curves).
+  /// Full knot vector (docs/surface-json.md storage for periodic curves).
   std::vector<double> knots() const;
   /// C(t); t is clamped into (open) or wrapped around (periodic) the domain.
   Point evaluate(double t) const;

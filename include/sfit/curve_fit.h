@@ -1,5 +1,5 @@
 // Curve stage: one row of points to the B-spline curve with the fewest control points that
-// keeps every component of every point within a bound (METHOD.md section 3).
+// keeps every component of every point within a bound (docs/method.md section 3).
 #pragma once
 
 #include <span>
@@ -10,7 +10,7 @@
 
 namespace sfit {
 
-/// How the smallest control-point count is searched (METHOD.md section 7.1).
+/// How the smallest control-point count is searched (docs/method.md section 7.1).
 enum class CountSearch {
   kLinear,  ///< the paper's SFIT01: count = degree+1, degree+2, ... until the fit holds; the
             ///< smallest count that holds
@@ -26,16 +26,16 @@ enum class CountSearch {
 struct CurveFit {
   Curve curve;
   std::vector<double> parameters;  ///< t of each data point
-  /// true: `parameters` are scaled_parameters() of the positions the fit was given (METHOD.md
-  /// 7.4); false: the paper's (paper_parameters()), also where the positions could not be
-  /// used (an interpolant they make singular).
+  /// true: `parameters` are scaled_parameters() of the positions the fit was given
+  /// (docs/method.md 7.4); false: the paper's (paper_parameters()), also where the positions
+  /// could not be used (an interpolant they make singular).
   bool scaled = false;
   Point max_deviation = Point::Zero();  ///< max_j |C(t_j) - D_j| per axis
   int solves = 0;                       ///< least-squares solves the search needed
 };
 
 /// Least-squares fit of `points` by a uniform curve of `degree` with exactly `count` control
-/// points at the paper's parameters (METHOD.md 3), or, given `positions`
+/// points at the paper's parameters (docs/method.md 3), or, given `positions`
 /// (normalized_positions()), at their scaled_parameters(). Requires degree+1 <= count <=
 /// points.size() (a periodic fit needs count >= degree + 1 too). Throws Error(kInternal) if
 /// the system is singular, which the paper's parameters rule out (positions may not).
@@ -48,7 +48,7 @@ struct CurveFitOptions {
   Point bound = Point::Zero();  ///< per-axis bound on |C(t_j) - D_j| (T/2 in a surface fit)
   CountSearch search = CountSearch::kFast;
   int hint = 0;  ///< where kFast starts, the count kKnown takes; 0: degree + 1
-  /// Positions of the points (normalized_positions()) for the rules of METHOD.md 7.4; empty:
+  /// Positions of the points (normalized_positions()) for the rules of docs/method.md 7.4; empty:
   /// the paper's parameters. A count whose system the positions leave singular does not hold;
   /// at count N (interpolation) the paper's parameters are the fallback.
   std::span<const double> positions;

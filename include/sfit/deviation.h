@@ -1,5 +1,5 @@
-// The explicit check of every data point against the finished surface (METHOD.md section 7,
-// last paragraph: the gap the paper admits in its section 3.4).
+// The explicit check of every data point against the finished surface (docs/method.md
+// section 6: the gap the paper admits in its section 3.4).
 #pragma once
 
 #include <span>

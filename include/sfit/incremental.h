@@ -1,4 +1,4 @@
-// Refitting after a small edit of the data (METHOD.md 7.6-7.7): the designer moves, adds or
+// Refitting after a small edit of the data (docs/method.md 7.6-7.7): the designer moves, adds or
 // deletes a data point, or replaces a row, and the surface follows.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Uniform knot vectors and Greville abscissae (METHOD.md section 2, section 3 step 1).
+// Uniform knot vectors and Greville abscissae (docs/method.md section 2, section 3 step 1).
 #pragma once
 
 #include <vector>
@@ -11,7 +11,7 @@ namespace sfit {
 std::vector<double> clamped_uniform_knots(int degree, int count);
 
 /// Full periodic uniform knot vector of a closed curve with `count` distinct control points,
-/// stored as SURFACE_JSON.md asks: count + degree control points (the last `degree` repeat
+/// stored as docs/surface-json.md asks: count + degree control points (the last `degree` repeat
 /// the first), knots i - degree for i = 0 ... count + 2*degree. Domain [0, count].
 std::vector<double> periodic_uniform_knots(int degree, int count);
 
@@ -24,7 +24,7 @@ double domain_end(int degree, int count, bool periodic);
 double greville(int degree, int count, bool periodic, int i);
 
 /// The Greville sequence read at a fractional 0-based index x in [0, count - 1] by linear
-/// interpolation (METHOD.md section 3 step 3). For periodic curves the sequence is
+/// interpolation (docs/method.md section 3 step 3). For periodic curves the sequence is
 /// extended uniformly, so x may be any real number; the result is reduced into [0, count).
 double greville_at(int degree, int count, bool periodic, double x);
 

@@ -1,5 +1,5 @@
-// Parameters of the data points (METHOD.md section 3 step 3) and the re-representation map
-// between two uniform curves (METHOD.md section 4 step 1).
+// Parameters of the data points (docs/method.md section 3 step 3) and the re-representation map
+// between two uniform curves (docs/method.md section 4 step 1).
 #pragma once
 
 #include <span>
@@ -12,10 +12,10 @@ namespace sfit {
 
 /// How the data points of a row (or the rows, across) get their parameters.
 enum class Parametrization {
-  kPaper,        ///< METHOD.md 3: the Greville sequence read at the point's index (SFIT01)
-  kUniform,      ///< METHOD.md 7.4: equal steps in the point's index, t = L j / (N-1)
-  kChord,        ///< METHOD.md 7.4: proportional to the chord length along the row
-  kCentripetal,  ///< METHOD.md 7.4: proportional to the square root of the chord length
+  kPaper,        ///< docs/method.md 3: the Greville sequence read at the point's index (SFIT01)
+  kUniform,      ///< docs/method.md 7.4: equal steps in the point's index, t = L j / (N-1)
+  kChord,        ///< docs/method.md 7.4: proportional to the chord length along the row
+  kCentripetal,  ///< docs/method.md 7.4: proportional to the square root of the chord length
   /// Not a rule: fit_surface() tries the four above and keeps the surface with the fewest
   /// control points (the report names the rule used). Costs the four fits.
   kFewest,
@@ -44,7 +44,7 @@ std::vector<double> scaled_parameters(int degree, int count, bool periodic,
 /// `degree` with `count` control points.
 /// Open: the Greville sequence read at the fractional index (count-1) j / (n_points-1), so
 /// t_0 = 0 and t_last = count - degree, and with count == n_points the t are the Greville
-/// abscissae. Closed (the periodic Greville rule of METHOD.md 7.3): t_j = o + j count /
+/// abscissae. Closed (the periodic Greville rule of docs/method.md 7.3): t_j = o + j count /
 /// n_points with o = 0 for odd and 1/2 for even degree, so that count == n_points collocates
 /// at the Greville abscissae and never at the knots of an even degree.
 std::vector<double> paper_parameters(int degree, int count, bool periodic, int n_points);
@@ -54,7 +54,7 @@ std::vector<double> paper_parameters(int degree, int count, bool periodic, int n
 /// tau_l (its Greville sequence read at fractional index l (count_from-1)/(count_to-1)) and
 /// places those samples at the new Greville abscissae g_l. This map sends tau_l to g_l and is
 /// linear in between (exactly linear for periodic curves).
-/// With `scaled` (curves fitted at scaled_parameters(), METHOD.md 7.4) the map is the linear
+/// With `scaled` (curves fitted at scaled_parameters(), docs/method.md 7.4) the map is the linear
 /// scaling of one domain onto the other, which keeps a point's position f, and tau_l is the
 /// preimage of g_l; for periodic curves the two coincide.
 class ReparameterMap {

@@ -1,4 +1,4 @@
-// Re-representation of a row curve on the common control-point count (METHOD.md section 4),
+// Re-representation of a row curve on the common control-point count (docs/method.md section 4),
 // with the explicit per-point check and repair that the paper lacked (its section 3.4).
 #pragma once
 
@@ -18,10 +18,10 @@ struct Rerepresentation {
 };
 
 /// Re-represents `fit` (a curve fitted to `data`) as a uniform curve of `degree` with `count`
-/// control points (METHOD.md 4): samples the old curve at count parameters of the paper's
+/// control points (docs/method.md 4): samples the old curve at count parameters of the paper's
 /// rule and interpolates them at the new Greville abscissae. Each data point gets the new
 /// parameter `target_parameters[k]`, or, when that is empty, the image of its old parameter
-/// under ReparameterMap (the scaled map when fit.scaled: METHOD.md 7.4).
+/// under ReparameterMap (the scaled map when fit.scaled: docs/method.md 7.4).
 ///
 /// Guarantee (beyond the paper): every data point is then checked against `bound` per axis.
 /// Where interpolating the samples pushed points out, those points are added to the system as

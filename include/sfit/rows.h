@@ -1,4 +1,4 @@
-// Points and the ragged container of rows (METHOD.md section 1).
+// Points and the ragged container of rows (docs/method.md section 1).
 #pragma once
 
 #include <Eigen/Core>

@@ -1,4 +1,4 @@
-// The tensor-product B-spline surface sfit produces (METHOD.md section 2).
+// The tensor-product B-spline surface sfit produces (docs/method.md section 2).
 #pragma once
 
 #include <vector>
@@ -10,7 +10,7 @@ namespace sfit {
 /// S(u,v) = sum_i sum_j B_i,degree_u(u) B_j,degree_v(v) P_ij on uniform knots, u along the
 /// rows, v across them. `control` holds the distinct control points, row-major in i:
 /// P_ij = control[i * count_v + j]. A periodic direction stores its `count` distinct points;
-/// full_knots_u() and full_control() give the SURFACE_JSON.md form with the wrap copies.
+/// full_knots_u() and full_control() give the docs/surface-json.md form with the wrap copies.
 struct Surface {
   int degree_u = 3;
   int degree_v = 3;
@@ -35,7 +35,7 @@ struct Surface {
   /// Stored control-point counts: count + degree for a periodic direction.
   int full_count_u() const { return count_u + (periodic_u ? degree_u : 0); }
   int full_count_v() const { return count_v + (periodic_v ? degree_v : 0); }
-  /// Full knot vectors, length full_count + degree + 1 (SURFACE_JSON.md).
+  /// Full knot vectors, length full_count + degree + 1 (docs/surface-json.md).
   std::vector<double> full_knots_u() const;
   std::vector<double> full_knots_v() const;
   /// Control point (i, j) of the full arrays, 0 <= i < full_count_u().

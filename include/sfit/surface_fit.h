@@ -1,4 +1,4 @@
-// Rows of points to one B-spline surface within a per-axis tolerance (METHOD.md sections 3-5),
+// Rows of points to one B-spline surface within a per-axis tolerance (docs/method.md sections 3-5),
 // with every data point checked on the finished surface.
 #pragma once
 
@@ -23,7 +23,7 @@ struct FitOptions {
   bool closed_u = false;            ///< rows are closed contours (first point not repeated)
   bool closed_v = false;            ///< the sequence of rows is closed
   CountSearch search = CountSearch::kFast;
-  /// How points get their parameters, in both directions (METHOD.md 3 and 7.4). Across the
+  /// How points get their parameters, in both directions (docs/method.md 3 and 7.4). Across the
   /// rows, the geometric rules average the columns' normalized chord lengths (one v per row,
   /// shared by every column, as the guarantee needs).
   Parametrization parametrization = Parametrization::kPaper;
@@ -37,7 +37,7 @@ struct FitOptions {
   std::function<void(std::string_view, std::size_t, std::size_t)> progress;
 };
 
-/// What a fit achieved (SURFACE_JSON.md "report").
+/// What a fit achieved (docs/surface-json.md, "The report").
 struct FitReport {
   std::size_t points = 0;
   std::size_t rows = 0;

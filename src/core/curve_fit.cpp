@@ -17,7 +17,7 @@ namespace sfit {
 
 namespace {
 
-// Positions (METHOD.md 7.4) whose factorisation has a pivot ratio min|R_ii| / max|R_ii| below
+// Positions (docs/method.md 7.4) whose factorisation has a pivot ratio min|R_ii| / max|R_ii| below
 // this count as singular: the condition number is then above 100, and the curve may swing far
 // between the points it fits. Measured (the pivot ratio of every factorisation of a fit at
 // 1e-3): the paper's parameters never go below 0.28 on the shared data; chord length stays

@@ -131,7 +131,7 @@ Rerepresentation rerepresent(const CurveFit& fit, std::span<const Point> data, i
   const auto& db = G.db;
   const auto& dfirst = G.dfirst;
 
-  // Samples of the old curve (METHOD.md 4 step 1) at tau_l, placed at the new Greville
+  // Samples of the old curve (docs/method.md 4 step 1) at tau_l, placed at the new Greville
   // abscissae g_l (step 2).
   std::vector<Point> samples(static_cast<std::size_t>(count));
   const int wo = old.degree + 1, no = old.count();

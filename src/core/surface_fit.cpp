@@ -282,9 +282,10 @@ void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of, GetPositi
   }
 }
 
-// One curve on `count` control points. At the paper's parameters: rerepresent() (METHOD.md
-// 4). At positions (METHOD.md 7.4), where the curve has at least `count` points: the least
-// squares fit of its points with `count` control points at the same positions, if it holds.
+// One curve on `count` control points. At the paper's parameters: rerepresent()
+// (docs/method.md 4). At positions (docs/method.md 7.4), where the curve has at least `count`
+// points: the least squares fit of its points with `count` control points at the same
+// positions, if it holds.
 // Every curve's coefficients are then one linear map of its points, so curves whose points
 // vary smoothly from one to the next have control points that do too, and the transverse
 // stage needs few; the minimal counts differing from curve to curve would otherwise leave
@@ -459,7 +460,7 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   for (std::size_t j = 0; j < M; ++j) longest = std::max(longest, rows[j].size());
   auto row_points = [&](std::size_t j) { return rows[j]; };
 
-  // Positions of the points along their rows (none for the paper's rule): METHOD.md 7.4.
+  // Positions of the points along their rows (none for the paper's rule): docs/method.md 7.4.
   const bool geometric = rule_ != Parametrization::kPaper;
   std::vector<double> row_positions;
   if (geometric) {
@@ -475,7 +476,7 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
     return std::span<const double>(row_positions.data() + rows.offsets()[j], rows[j].size());
   };
 
-  // Curve stage on the rows (METHOD.md 3): all rows, or the changed ones and their chains.
+  // Curve stage on the rows (docs/method.md 3): all rows, or the changed ones and their chains.
   report("rows", 0, M);
   CurveFitOptions row_options{o_.degree_u, o_.closed_u, bound, o_.search};
   // Uniform positions depend on the row's length only, so rows of one length share them.
@@ -494,13 +495,13 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
       dirty[j] = (*changed)[j] || fits[j].curve.control != row_final_fits_[j].curve.control;
   report("rows", M, M);
 
-  // Re-representation on the common count nu (METHOD.md 4).
+  // Re-representation on the common count nu (docs/method.md 4).
   Represented rs = represent(M, row_points, row_positions_of, fits, o_.degree_u, o_.closed_u, bound,
                              threads_, false, longest, {}, changed ? &row_curves_ : nullptr,
                              row_common_, changed ? &dirty : nullptr);
   const int nu = rs.common;
 
-  // Transverse stage: column i holds control point i of every row curve (METHOD.md 5).
+  // Transverse stage: column i holds control point i of every row curve (docs/method.md 5).
   std::vector<Point> columns(static_cast<std::size_t>(nu) * M);
   for (std::size_t j = 0; j < M; ++j)
     for (int i = 0; i < nu; ++i)
@@ -632,7 +633,7 @@ FitResult SurfaceFitter::fit(const Rows& rows) {
 FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
   rule_ = requested;
   if (rule_ == Parametrization::kPaper) return fit_with_rule(rows);
-  // The geometric rules (METHOD.md 7.4) hold the tolerance on their own where they can; where
+  // The geometric rules (docs/method.md 7.4) hold the tolerance on their own where they can; where
   // they cannot (a re-representation or the final check fails: positions whose systems are
   // singular near interpolation, rows whose parameters disagree), or where the surface swings
   // away between the points it holds (stays_near_the_data()), the paper's rule, which always

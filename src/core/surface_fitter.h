@@ -1,5 +1,5 @@
 // The stages of fit_surface() as a state that can be updated after edits of some rows
-// (METHOD.md 7.7). Private: the public faces are fit_surface() and IncrementalFit.
+// (docs/method.md 7.7). Private: the public faces are fit_surface() and IncrementalFit.
 #pragma once
 
 #include <vector>

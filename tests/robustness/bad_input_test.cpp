@@ -1,4 +1,4 @@
-// The bad-input corpus (issue 6): every case of tests/bad_input/cases.tsv runs the sfit CLI
+// The bad-input corpus: every case of tests/bad_input/cases.tsv runs the sfit CLI
 // and must give its exit code and its one exact error line, and must leave no output file,
 // no temporary file, and any existing output untouched. Accepted cases (exit 0) must write a
 // surface that reads back with finite control points.

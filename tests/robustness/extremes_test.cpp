@@ -1,4 +1,4 @@
-// Numerical extremes (issue 6): offsets and scales, the highest degree, very long rows, very
+// Numerical extremes: offsets and scales, the highest degree, very long rows, very
 // many rows, interpolation of ragged rows, a tolerance larger than the data. In every case
 // the surface must be finite and hold every point within tolerance.
 #include <gtest/gtest.h>

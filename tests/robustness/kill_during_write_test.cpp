@@ -1,4 +1,4 @@
-// Nothing lost (issue 6): sfit writes every output to a temporary file beside the target and
+// Nothing lost: sfit writes every output to a temporary file beside the target and
 // renames it, so killing the process in the middle of a large write leaves an existing output
 // exactly as it was. SIGKILL gives the process no chance to clean up, so the partial
 // temporary file "OUT.sfit-XXXXXX" stays behind; it never has the target's name.

@@ -1,5 +1,5 @@
 // An independent evaluator for the tests: the plain Cox-de Boor recursion on the full knot
-// vectors of the SURFACE_JSON.md form, sharing no code with sfit's basis.cpp.
+// vectors of the docs/surface-json.md form, sharing no code with sfit's basis.cpp.
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// Reader of the .rows text format (../shared/data/README.md): one point "x y z" per line,
+// Reader of the .rows text format (docs/rows-format.md): one point "x y z" per line,
 // '#' starts a comment, a blank line separates consecutive rows.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The surface and report JSON of ../shared/SURFACE_JSON.md.
+// The surface and report JSON of docs/surface-json.md.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-// One row of points and its fitted curve (the curve stage, METHOD.md section 3) with the
+// One row of points and its fitted curve (the curve stage, docs/method.md section 3) with the
 // tolerance band, in three 2D projections and a plot of the per-axis deviations.
 #pragma once
 

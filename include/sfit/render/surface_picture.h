@@ -1,4 +1,4 @@
-// Pictures of a fitted surface (METHOD.md section 6, "pictures"): lit and shaded, highlight
+// Pictures of a fitted surface (docs/pictures.md): lit and shaded, highlight
 // stripes, deviation of the data, Gaussian and mean curvature; with the control net, the data
 // points and the row curves drawn over it. Software rasterised, headless.
 #pragma once
