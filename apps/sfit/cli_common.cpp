@@ -1,12 +1,16 @@
 #include "cli_common.h"
 
-#include <charconv>
+#include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 
 #include "sfit/error.h"
+#include "sfit/fit_limits.h"
 #include "sfit/io/csv_reader.h"
+#include "sfit/io/file_names.h"
+#include "sfit/io/formats.h"
 #include "sfit/io/rows_binary.h"
 #include "sfit/io/rows_reader.h"
 #ifdef SFIT_HAVE_EXCHANGE
@@ -21,12 +25,87 @@ void say(const std::string& line) {
   if (verbose) std::fprintf(stderr, "sfit: %s\n", line.c_str());
 }
 
+namespace {
+
+// CLI11 reads "010" as octal and "0x10" as hex: give it plain decimal digits only.
+std::string decimal_integer(std::string& text) {
+  std::size_t i = 0;
+  std::string sign;
+  if (!text.empty() && (text[0] == '-' || text[0] == '+')) {
+    if (text[0] == '-') sign = "-";
+    i = 1;
+  }
+  if (text.empty()) return "empty value";
+  if (i == text.size()) return "'" + text + "' is not a whole number";
+  for (std::size_t k = i; k < text.size(); ++k)
+    if (!std::isdigit(static_cast<unsigned char>(text[k])))
+      return "'" + text + "' is not a whole decimal number";
+  while (i + 1 < text.size() && text[i] == '0') ++i;
+  text = sign + text.substr(i);
+  return "";
+}
+
+void harden(CLI::App& app) {
+  for (CLI::Option* o : app.get_options()) {
+    if (o->get_type_size_max() == 0) continue;  // a flag
+    o->check(CLI::Validator(
+        [](std::string& v) { return v.empty() ? std::string("empty value") : std::string(); }, "",
+        "non-empty"));
+    const std::string t = o->get_type_name();
+    if (t == "INT" || t == "UINT") o->transform(CLI::Validator(decimal_integer, "", "decimal"));
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) harden(*sub);
+}
+
+}  // namespace
+
+void harden_options(CLI::App& app) {
+  harden(app);
+}
+
+Point CheckedFitOptions::tolerance(const Rows& rows) const {
+  return relative() ? relative_tolerance(rows, fraction) : absolute;
+}
+
+CheckedFitOptions check_fit_options(const FitOptionArgs& a) {
+  CheckedFitOptions c;
+  FitOptions& o = c.options;
+  check_degree(a.degree, "--degree");
+  if (a.degree_u) check_degree(*a.degree_u, "--degree-u");
+  if (a.degree_v) check_degree(*a.degree_v, "--degree-v");
+  o.degree_u = a.degree_u.value_or(a.degree);
+  o.degree_v = a.degree_v.value_or(a.degree);
+  if (a.closed == "u" || a.closed == "uv" || a.closed == "vu") o.closed_u = true;
+  if (a.closed == "v" || a.closed == "uv" || a.closed == "vu") o.closed_v = true;
+  if (!a.closed.empty() && a.closed != "none" && !o.closed_u && !o.closed_v)
+    throw Error(ErrorCode::kUsage, "'" + a.closed + "' is not one of u, v, uv, none",
+                Place{.option = "--closed"});
+  if (a.search != "fast" && a.search != "linear")
+    throw Error(ErrorCode::kUsage, "'" + a.search + "' is not one of fast, linear",
+                Place{.option = "--search"});
+  o.search = a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast;
+  if (!parse_parametrization(a.parameters, o.parametrization))
+    throw Error(ErrorCode::kUsage,
+                "'" + a.parameters + "' is not one of paper, uniform, chord, centripetal, fewest",
+                Place{.option = "--parameters"});
+  check_threads(a.threads, "--threads");
+  o.threads = a.threads;
+  if (a.tol && a.tol_rel)
+    throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both",
+                Place{.option = "--tol-rel"});
+  if (a.tol_rel) check_tolerance_fraction(*a.tol_rel, "--tol-rel");
+  c.fraction = a.tol_rel.value_or(kDefaultToleranceFraction);
+  if (a.tol) c.absolute = parse_tolerance(*a.tol, "--tol");
+  return c;
+}
+
 Point parse_tolerance(const std::string& text, const std::string& option) {
   std::vector<double> v;
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    const std::string tok = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::string tok =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     double x = 0;
     const char* b = tok.data();
     const char* e = b + tok.size();
@@ -50,9 +129,19 @@ Point parse_tolerance(const std::string& text, const std::string& option) {
 }
 
 Input read_input(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = path == "-" ? "rows" : io::extension_of(path);
+  const io::Format* f = io::find_format(ext);
+  if (f && f->kind == io::FormatKind::kRows && f->reads && !f->available)
+    throw Error(ErrorCode::kUsage,
+                std::string(f->name) + " input needs " + std::string(io::part_name(f->part)) +
+                    ", which this build of sfit lacks",
+                Place{.file = path});
+  if (f && f->kind == io::FormatKind::kSurface && f->reads && f->part == io::FormatPart::kCad &&
+      !f->available)
+    throw Error(ErrorCode::kUsage,
+                std::string(f->name) + " section input needs " +
+                    std::string(io::part_name(f->part)) + ", which this build of sfit lacks",
+                Place{.file = path});
   if (ext == "csv") {
     auto r = io::read_csv(path);
     return Input{std::move(r.rows), std::move(r.first_line), std::move(r.name)};
@@ -60,7 +149,9 @@ Input read_input(const std::string& path) {
 #ifdef SFIT_HAVE_EXCHANGE
   if (exchange::is_exchange_input(path)) {
     auto r = exchange::read_sections(path);
-    return Input{std::move(r.rows), std::move(r.first_line), path};
+    say(path + ": lengths in " + r.units + " (the file's unit; not converted)");
+    return Input{std::move(r.rows), std::move(r.first_line), path, std::move(r.closed),
+                 std::move(r.units)};
   }
 #endif
   if (io::is_binary_rows_path(path)) {
@@ -69,6 +160,55 @@ Input read_input(const std::string& path) {
   }
   auto r = io::read_rows(path);
   return Input{std::move(r.rows), std::move(r.first_line), std::move(r.name)};
+}
+
+namespace {
+// The ends of a row meet: the gap from the last point to the first is no longer than twice
+// the row's longest step and short against the row's length (a closed contour, whether the
+// first point is repeated or not).
+bool ends_meet(std::span<const Point> row) {
+  if (row.size() < 4) return false;
+  double longest = 0, length = 0;
+  for (std::size_t k = 1; k < row.size(); ++k) {
+    const double d = (row[k] - row[k - 1]).norm();
+    longest = std::max(longest, d);
+    length += d;
+  }
+  const double gap = (row[row.size() - 1] - row[0]).norm();
+  return length > 0 && gap <= 2 * longest && gap <= 0.2 * length;
+}
+}  // namespace
+
+std::string units_of_outputs(const std::string& given, const Input& in) {
+  if (given.empty()) return in.units.empty() ? std::string("mm") : in.units;
+  if (!in.units.empty() && in.units != given)
+    say("warning: " + in.name + " is in " + in.units + " but --units states " + given +
+        ": coordinates are not converted, so the outputs are off by the ratio of the units");
+  return given;
+}
+
+void note_closed_rows(const Input& in, bool& closed_u, bool closed_given) {
+  if (closed_u || in.rows.size() < 2) return;
+  const bool cad_closed =
+      !in.closed_rows.empty() &&
+      std::all_of(in.closed_rows.begin(), in.closed_rows.end(), [](bool c) { return c; });
+  if (cad_closed && !closed_given) {
+    closed_u = true;
+    say("note: every section curve in " + in.name +
+        " is closed: fitting closed rows (--closed u; give --closed none to fit them open)");
+    return;
+  }
+  if (cad_closed) {
+    say("warning: every section curve in " + in.name +
+        " is closed, but they are fitted open: the surface has a slit where they close");
+    return;
+  }
+  if (closed_given) return;
+  for (std::size_t j = 0; j < in.rows.size(); ++j)
+    if (!ends_meet(in.rows[j])) return;
+  say("warning: the ends of every row of " + in.name +
+      " meet: fitted open, the surface has a slit there; give --closed u for closed contours "
+      "(first point not repeated), or --closed none to keep them open");
 }
 
 }  // namespace sfit::cli

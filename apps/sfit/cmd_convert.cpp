@@ -3,6 +3,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "output_plan.h"
 #include "outputs.h"
 #include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
@@ -25,17 +26,14 @@ int run_convert(const ConvertArgs& a) {
   verbose = !a.quiet;
   if (a.outputs.empty())
     throw Error(ErrorCode::kUsage, "nothing to write: give -o OUT.ext", Place{.option = "-o"});
-  for (const auto& out : a.outputs) {
-    check_output_extension(out);
-    io::check_writable(out);
-  }
-  check_units(a.units);
+  OutputPlan plan;
+  plan.add_input(a.input);
+  plan.add(a.outputs, "-o", OutputTarget::kSurface);
+  check_output_options(a.units, a.mesh_density);
   const Surface s = io::read_surface_json(a.input);
   OutputContext ctx{s, nullptr, nullptr, a.input, a.mesh, a.mesh_density, a.fields, a.units};
-  for (const auto& out : a.outputs) {
-    write_output(out, ctx);
-    say("wrote " + out);
-  }
+  plan.write_all(
+      [&](const PlannedOutput& out, std::string* text) { write_output(out.path, ctx, text); });
   return 0;
 }
 

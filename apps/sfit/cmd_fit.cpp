@@ -8,9 +8,12 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "output_plan.h"
 #include "outputs.h"
 #include "sfit/error.h"
+#include "sfit/fit_limits.h"
 #include "sfit/io/atomic_file.h"
+#include "sfit/io/formats.h"
 #include "sfit/io/surface_json.h"
 #include "sfit/surface_fit.h"
 #ifdef SFIT_HAVE_RENDER
@@ -20,38 +23,20 @@
 namespace sfit::cli {
 namespace {
 
-struct FitArgs {
+struct FitArgs : FitOptionArgs {  // --degree, --tol, --closed, ... (cli_common.h)
   std::string input;
   std::vector<std::string> outputs;
   std::string report;
-  int degree = 3;
-  std::optional<int> degree_u, degree_v;  // unset: --degree
-  std::optional<std::string> tol;
-  std::optional<double> tol_rel;
-  std::string closed;
-  std::string search = "fast";
-  std::string parameters = "paper";
-  int threads = 0;
   bool quiet = false;
   bool mesh = false;
   int mesh_density = 0;
   bool fields = false;
-  std::string units = "mm";
+  std::string units;  // "": a STEP/IGES input's unit, else mm
 #ifdef SFIT_HAVE_RENDER
   std::vector<std::string> pngs;  // --png pictures
   PictureArgs picture;
 #endif
 };
-
-#ifdef SFIT_HAVE_RENDER
-bool wants_pictures(const FitArgs& a) {
-  return !a.pngs.empty();
-}
-#else
-bool wants_pictures(const FitArgs&) {
-  return false;
-}
-#endif
 
 // Maps a data error of the fit onto the input file (and file:line for a row-level one).
 [[noreturn]] void rethrow_with_file(const Error& e, const Input& in) {
@@ -74,53 +59,24 @@ std::string vec(const Point& p) {
 
 int run_fit(const FitArgs& a) {
   verbose = !a.quiet;
-  FitOptions o;
-  o.degree_u = a.degree_u.value_or(a.degree);
-  o.degree_v = a.degree_v.value_or(a.degree);
-  auto check_degree = [](int d, const char* opt) {
-    if (d < 1 || d > 20)
-      throw Error(ErrorCode::kUsage, fmt::format("degree {} is out of range 1 ... 20", d),
-                  Place{.option = opt}, {static_cast<double>(d)});
-  };
-  check_degree(a.degree, "--degree");
-  if (a.degree_u) check_degree(*a.degree_u, "--degree-u");
-  if (a.degree_v) check_degree(*a.degree_v, "--degree-v");
-  if (a.closed == "u" || a.closed == "uv" || a.closed == "vu") o.closed_u = true;
-  if (a.closed == "v" || a.closed == "uv" || a.closed == "vu") o.closed_v = true;
-  if (!a.closed.empty() && a.closed != "none" && !o.closed_u && !o.closed_v)
-    throw Error(ErrorCode::kUsage, "'" + a.closed + "' is not one of u, v, uv, none",
-                Place{.option = "--closed"});
-  o.search = a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast;
-  parse_parametrization(a.parameters, o.parametrization);  // checked by CLI11
-  o.threads = a.threads;
-  if (a.tol && a.tol_rel)
-    throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both",
-                Place{.option = "--tol-rel"});
-  if (a.tol_rel && !(*a.tol_rel >= 0 && *a.tol_rel <= 1))
-    throw Error(
-        ErrorCode::kUsage,
-        fmt::format("must be a fraction 0 ... 1 of the bounding-box diagonal, got {}", *a.tol_rel),
-        Place{.option = "--tol-rel"}, {*a.tol_rel});
-  Point tol_abs = Point::Constant(-1);
-  if (a.tol) tol_abs = parse_tolerance(*a.tol, "--tol");
-  if (a.outputs.empty() && a.report.empty() && !wants_pictures(a))
-    throw Error(ErrorCode::kUsage, "nothing to write: give -o OUT.json (and/or --report)",
-                Place{.option = "-o"});
-  // Refuse impossible outputs before reading or fitting anything.
-  for (const auto& out : a.outputs) {
-    check_output_extension(out);
-    io::check_writable(out);
-  }
-  if (!a.report.empty()) io::check_writable(a.report);
-  check_units(a.units);
+  const CheckedFitOptions checked = check_fit_options(a);
+  FitOptions o = checked.options;
+  // Every output planned and checked before reading or fitting anything.
+  OutputPlan plan;
+  plan.add_input(a.input);
+  plan.add(a.outputs, "-o", OutputTarget::kSurface);
+  if (!a.report.empty()) plan.add(a.report, "--report", OutputTarget::kReport);
+  check_output_options(a.units.empty() ? "mm" : a.units, a.mesh_density);
 #ifdef SFIT_HAVE_RENDER
+  plan.add(a.pngs, "--png", OutputTarget::kPicture);
   check_picture_outputs(a.pngs, a.picture, "--png");
 #endif
 
   Input in = read_input(a.input);
   const BoundingBox box = bounding_box(in.rows);
-  const double fraction = a.tol_rel.value_or(1e-3);
-  o.tolerance = tol_abs.x() >= 0 ? tol_abs : Point::Constant(fraction * box.diagonal());
+  o.tolerance = checked.tolerance(in.rows);
+  note_closed_rows(in, o.closed_u, !a.closed.empty());
+  const std::string units = units_of_outputs(a.units, in);
 
   std::size_t lo = SIZE_MAX, hi = 0;
   for (std::size_t j = 0; j < in.rows.size(); ++j) {
@@ -131,9 +87,9 @@ int run_fit(const FitArgs& a) {
                   in.rows.total_points(), lo, hi, o.closed_u ? ", closed rows" : "",
                   o.closed_v ? ", closed row sequence" : ""));
   say(fmt::format("degree {} x {}, tolerance {}{}", o.degree_u, o.degree_v, vec(o.tolerance),
-                  tol_abs.x() >= 0
-                      ? ""
-                      : fmt::format(" ({} of the diagonal {})", g(fraction), g(box.diagonal()))));
+                  !checked.relative() ? ""
+                                      : fmt::format(" ({} of the diagonal {})", g(checked.fraction),
+                                                    g(box.diagonal()))));
   const bool show_progress = verbose && in.rows.total_points() >= 200000 && isatty(2);
   if (show_progress)
     o.progress = [](std::string_view stage, std::size_t done, std::size_t total) {
@@ -175,19 +131,28 @@ int run_fit(const FitArgs& a) {
                     r.worst_row, r.worst_index, vec(r.worst_deviation)),
         Place{.file = in.name},
         {r.worst_deviation.x(), r.worst_deviation.y(), r.worst_deviation.z()});
-  OutputContext ctx{fit.surface, &fit,           &in.rows, in.name,
-                    a.mesh,      a.mesh_density, a.fields, a.units};
-  for (const auto& out : a.outputs) {
-    write_output(out, ctx);
-    say("wrote " + out);
-  }
-  if (!a.report.empty()) {
-    io::write_report_json(a.report, r);
-    say("wrote " + a.report);
-  }
+  OutputContext ctx{fit.surface, &fit, &in.rows, in.name, a.mesh, a.mesh_density, a.fields, units};
+  bool pictures_done = false;
+  plan.write_all([&](const PlannedOutput& out, std::string* text) {
+    switch (out.target) {
+      case OutputTarget::kSurface:
+        return write_output(out.path, ctx, text);
+      case OutputTarget::kReport:
+        if (text)
+          *text = io::report_to_json(r).dump(2) + "\n";
+        else
+          io::write_report_json(out.path, r);
+        return;
+      case OutputTarget::kPicture:
 #ifdef SFIT_HAVE_RENDER
-  write_fit_pictures(a.pngs, a.picture, fit, in.rows, in.name);
+        if (!pictures_done) write_fit_pictures(a.pngs, a.picture, fit, in.rows, in.name);
 #endif
+        pictures_done = true;
+        return;
+      case OutputTarget::kRows:
+        return;
+    }
+  });
   return 0;
 }
 
@@ -197,14 +162,21 @@ void add_fit_command(CLI::App& app, Runner& run) {
   auto args = std::make_shared<FitArgs>();
   CLI::App* c = app.add_subcommand("fit", "fit a surface to rows of points");
   c->add_option("INPUT", args->input,
-                "rows of points: .rows or .csv file ('-': .rows on standard input), or "
-                "section curves in a .step/.iges file (each curve one row)")
+                "rows of points (" + io::extension_list(io::FormatKind::kRows, true) +
+                    "; '-': .rows on standard input)" +
+                    (io::find_format("step")->available
+                         ? ", or section curves in a .step/.iges file (each curve one row)"
+                         : ""))
       ->required();
   c->add_option("-o,--output", args->outputs,
-                "output file; the extension picks the format (.json .step .igs .obj .stl .ply "
-                ".vtk .vts; repeat -o for several)");
-  c->add_option("--report", args->report, "write the fit report as JSON");
-  c->add_option("--degree", args->degree, "degree in both directions, 1 ... 20")->default_val(3);
+                "output file; the extension picks the format (" +
+                    io::extension_list(io::FormatKind::kSurface, false) +
+                    "); '-': the JSON on standard output; repeat -o for several; none: "
+                    "the summary only");
+  c->add_option("--report", args->report, "write the fit report as JSON ('-': standard output)");
+  c->add_option("--degree", args->degree,
+                fmt::format("degree in both directions, {} ... {}", kMinFitDegree, kMaxFitDegree))
+      ->default_val(3);
   c->add_option("--degree-u", args->degree_u, "degree along the rows (overrides --degree)");
   c->add_option("--degree-v", args->degree_v, "degree across the rows (overrides --degree)");
   c->add_option("--tol", args->tol,
@@ -221,16 +193,17 @@ void add_fit_command(CLI::App& app, Runner& run) {
                 "point's index; default), uniform (index), chord (chord length), centripetal, or "
                 "fewest (tries the four, keeps the fewest control points)")
       ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest"}));
-  c->add_option("--threads", args->threads, "threads (0: all cores); results do not depend on it")
-      ->check(CLI::Range(0, 4096));
+  c->add_option("--threads", args->threads,
+                "threads, 0 (all cores) ... " + std::to_string(kMaxThreads) +
+                    "; results do not depend on it");
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");
   c->add_option("--mesh-density", args->mesh_density,
                 "tessellation samples per direction (default: from the tolerance)");
   c->add_flag("--fields", args->fields, "add deviation and curvature point data (.vtk/.vts)");
   c->add_option("--units", args->units,
-                "length unit the STEP/IGES file states (mm, cm, m, km, um, in, ft, mi); "
-                "coordinates are written unchanged")
-      ->default_val("mm");
+                "length unit the STEP/IGES outputs state (mm, cm, m, km, um, in, ft, mi; "
+                "default: a STEP/IGES input's own unit, else mm); coordinates are written "
+                "unchanged");
 #ifdef SFIT_HAVE_RENDER
   CLI::Option* png = c->add_option("--png", args->pngs,
                                    "draw the fitted surface to a PNG picture (repeat for several; "

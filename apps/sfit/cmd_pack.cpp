@@ -3,6 +3,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "output_plan.h"
 #include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
 #include "sfit/io/rows_binary.h"
@@ -17,13 +18,14 @@ struct PackArgs {
 
 int run_pack(const PackArgs& a) {
   verbose = !a.quiet;
-  if (!io::is_binary_rows_path(a.output))
-    throw Error(ErrorCode::kUsage, "the output of pack must end in .srows", Place{.option = "-o"});
-  io::check_writable(a.output);
+  OutputPlan plan;
+  plan.add_input(a.input);
+  plan.add(a.output, "-o", OutputTarget::kRows);
   const Input in = read_input(a.input);
-  io::write_rows_binary(a.output, in.rows);
-  say("wrote " + a.output + " (" + std::to_string(in.rows.size()) + " rows, " +
-      std::to_string(in.rows.total_points()) + " points)");
+  say(in.name + ": " + std::to_string(in.rows.size()) + " rows, " +
+      std::to_string(in.rows.total_points()) + " points");
+  plan.write_all(
+      [&](const PlannedOutput& out, std::string*) { io::write_rows_binary(out.path, in.rows); });
   return 0;
 }
 

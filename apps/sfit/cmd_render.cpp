@@ -12,6 +12,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "output_plan.h"
 #include "picture_options.h"
 #include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
@@ -101,6 +102,10 @@ int run_render(const RenderArgs& a) {
   verbose = !a.quiet;
   if (a.output.empty())
     throw Error(ErrorCode::kUsage, "nothing to write: give -o PICTURE.png", Place{.option = "-o"});
+  OutputPlan plan;
+  plan.add_input(a.surface);
+  plan.add_input(a.data);
+  plan.add(a.output, "-o", OutputTarget::kPicture);
   check_picture_outputs({a.output}, a.picture, "-o");
   const render::Mode mode =
       render::parse_mode(a.picture.modes.empty() ? "shaded" : a.picture.modes.front(), "--mode");
@@ -118,20 +123,7 @@ int run_render(const RenderArgs& a) {
   if (!a.tol.empty()) tol_given = parse_tolerance(a.tol, "--tol");
 
   // The surface, and the report sfit writes beside it.
-  std::error_code ec;
-  if (std::filesystem::is_directory(a.surface, ec))
-    throw Error(ErrorCode::kInputUnreadable, "is a folder, not a surface file",
-                Place{.file = a.surface});
-  std::ifstream in(a.surface, std::ios::binary);
-  if (!in)
-    throw Error(ErrorCode::kInputUnreadable, "cannot open surface file", Place{.file = a.surface});
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw Error(ErrorCode::kInputSyntax, std::string("malformed JSON: ") + e.what(),
-                Place{.file = a.surface});
-  }
+  const nlohmann::json j = io::read_json_file(a.surface);
   const Surface surface = io::surface_from_json(j, a.surface);
   Point report_tol = Point::Constant(-1);
   std::string report_worst;
@@ -208,22 +200,17 @@ int run_render(const RenderArgs& a) {
         g(r.worst_ratio), row, r.worst_point - static_cast<long>(off[row]), px.x(), px.y(),
         tol_note.empty() ? "" : "; " + tol_note, report_worst.empty() ? "" : "; " + report_worst));
   }
-  render::write_png(a.output, r.image);
-  say(fmt::format("wrote {} ({}x{}, {} mode, {:.2f} s)", a.output, r.image.width, r.image.height,
+  say(fmt::format("drew {}x{}, {} mode, {:.2f} s", r.image.width, r.image.height,
                   render::to_string(mode), r.seconds));
+  plan.write_all(
+      [&](const PlannedOutput& out, std::string*) { render::write_png(out.path, r.image); });
   return 0;
 }
 
-struct RowArgs {
+struct RowArgs : FitOptionArgs {  // --degree, --closed, --tol, ... checked as 'fit' does
   std::string input;
   std::string output;
   long row = -1;
-  int degree = 3;
-  std::string closed;
-  std::string tol;
-  double tol_rel = -1;
-  std::string search = "fast";
-  std::string parameters = "paper";
   std::string size = "960x720";
   bool quiet = false;
 };
@@ -232,25 +219,12 @@ int run_render_rows(const RowArgs& a) {
   verbose = !a.quiet;
   if (a.output.empty())
     throw Error(ErrorCode::kUsage, "nothing to write: give -o PICTURE.png", Place{.option = "-o"});
-  check_png_path(a.output, "-o");
+  OutputPlan plan;
+  plan.add_input(a.input);
+  plan.add(a.output, "-o", OutputTarget::kPicture);
   const auto [w, h] = parse_size(a.size, "--size", 256);
-  if (a.degree < 1 || a.degree > 20)
-    throw Error(ErrorCode::kUsage, fmt::format("degree {} is out of range 1 ... 20", a.degree),
-                Place{.option = "--degree"}, {static_cast<double>(a.degree)});
-  bool closed = false;
-  if (a.closed == "u" || a.closed == "uv" || a.closed == "vu")
-    closed = true;
-  else if (!a.closed.empty() && a.closed != "none" && a.closed != "v")
-    throw Error(ErrorCode::kUsage, "'" + a.closed + "' is not one of u, v, uv, none",
-                Place{.option = "--closed"});
-  if (!a.tol.empty() && a.tol_rel >= 0)
-    throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both",
-                Place{.option = "--tol-rel"});
-  if (a.tol_rel > 1)
-    throw Error(ErrorCode::kUsage, "must be a fraction 0 ... 1 of the bounding-box diagonal",
-                Place{.option = "--tol-rel"}, {a.tol_rel});
-  Point tol = Point::Constant(-1);
-  if (!a.tol.empty()) tol = parse_tolerance(a.tol, "--tol");
+  const CheckedFitOptions checked = check_fit_options(a);
+  const bool closed = checked.options.closed_u;
 
   Input in = read_input(a.input);
   if (a.row < 0 || a.row >= static_cast<long>(in.rows.size()))
@@ -258,7 +232,7 @@ int run_render_rows(const RowArgs& a) {
                 fmt::format("row {} does not exist: {} has rows 0 ... {}", a.row, in.name,
                             in.rows.size() - 1),
                 Place{.option = "--row"}, {static_cast<double>(a.row)});
-  if (!(tol.x() >= 0)) tol = relative_tolerance(in.rows, a.tol_rel >= 0 ? a.tol_rel : 1e-3);
+  const Point tol = checked.tolerance(in.rows);
   const auto row = in.rows[static_cast<std::size_t>(a.row)];
   for (std::size_t k = 0; k < row.size(); ++k)
     if (!row[k].allFinite())
@@ -274,10 +248,8 @@ int run_render_rows(const RowArgs& a) {
                 Place{.file = in.name, .row = a.row}, {2.0});
   // The curve stage of the surface fit: this row within T/2 per axis.
   const Point bound = 0.5 * tol;
-  CurveFitOptions co{a.degree, closed, bound,
-                     a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast};
-  Parametrization rule = Parametrization::kPaper;
-  parse_parametrization(a.parameters, rule);  // checked by CLI11
+  CurveFitOptions co{checked.options.degree_u, closed, bound, checked.options.search};
+  const Parametrization rule = checked.options.parametrization;
   std::vector<double> positions;
   if (rule != Parametrization::kPaper) positions = normalized_positions(row, rule, closed);
   co.positions = positions;
@@ -294,8 +266,8 @@ int run_render_rows(const RowArgs& a) {
   say(fmt::format("row {}: {} points, {} control points (degree {}), max |d|/(T/2) {} at point {}",
                   a.row, row.size(), fit.curve.count(), fit.curve.degree, g(pic.worst_ratio),
                   pic.worst_index));
-  render::write_png(a.output, pic.image);
-  say("wrote " + a.output);
+  plan.write_all(
+      [&](const PlannedOutput& out, std::string*) { render::write_png(out.path, pic.image); });
   return 0;
 }
 
@@ -406,9 +378,9 @@ void write_fit_pictures(const std::vector<std::string>& pngs, const PictureArgs&
           "deviation picture: max |d|/T {} at point {} of the input, pixel ({:.0f}, {:.0f})",
           g(r.worst_ratio), r.worst_point, px.x(), px.y()));
     }
-    render::write_png(pngs[i], r.image);
-    say(fmt::format("wrote {} ({}x{}, {} mode, {:.2f} s)", pngs[i], r.image.width, r.image.height,
-                    m, r.seconds));
+    render::write_png(pngs[i], r.image);  // held back until every output is written
+    say(fmt::format("drew {} ({}x{}, {} mode, {:.2f} s)", pngs[i], r.image.width, r.image.height, m,
+                    r.seconds));
   }
 }
 

@@ -17,15 +17,18 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("sfit ") + "0.1.0");
   app.footer(
       "Run 'sfit COMMAND --help' for the options of a command.\n"
-      "Exit codes: 0 ok, 2 usage, 3 input unreadable, 4 input syntax, 5 input data,\n"
-      "6 output not written, 7 tolerance not met, 8 internal error.");
+      "Exit codes: 0 ok, 2 usage, 3 input unreadable (also: a STEP/IGES file the CAD kernel\n"
+      "crashed on), 4 input syntax, 5 input data, 6 output not written, 7 tolerance not met,\n"
+      "8 internal error (a bug: please report it). See docs/errors.md.");
   sfit::cli::Runner run;
   sfit::cli::add_fit_command(app, run);
   sfit::cli::add_convert_command(app, run);
   sfit::cli::add_pack_command(app, run);
+  sfit::cli::add_formats_command(app, run);
 #ifdef SFIT_HAVE_RENDER
   sfit::cli::add_render_commands(app, run);
 #endif
+  sfit::cli::harden_options(app);  // empty values refused, whole numbers read in decimal
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -42,32 +42,39 @@ const std::map<std::string, Writer>& writers() {
 
 }  // namespace
 
-std::vector<std::string> output_extensions() {
-  std::vector<std::string> v;
-  for (const auto& [k, w] : writers()) v.push_back(k);
-  return v;
-}
-
-void check_output_extension(const std::string& path) {
+void check_output_extension(const std::string& path, const std::string& option,
+                            io::FormatKind kind) {
   const std::string e = extension_of(path);
-  if (writers().count(e)) return;
-  std::string known;
-  for (const auto& k : output_extensions()) known += (known.empty() ? "." : ", .") + k;
-  throw Error(
-      ErrorCode::kUsage,
-      "cannot write '" + path + "': unknown output extension '" + e + "' (known: " + known + ")",
-      Place{.option = "-o"});
+  const io::Format* f = io::find_format(e);
+  if (f && f->kind == kind && f->writes && f->available &&
+      (kind != io::FormatKind::kSurface || writers().count(e)))
+    return;
+  if (f && f->kind == kind && f->writes)
+    throw Error(ErrorCode::kUsage,
+                "cannot write '" + path + "': " + std::string(f->name) + " needs " +
+                    std::string(io::part_name(f->part)) + ", which this build of sfit lacks",
+                Place{.option = option});
+  throw Error(ErrorCode::kUsage,
+              "cannot write '" + path + "': unknown output extension '" + e +
+                  "' (known: " + io::extension_list(kind, false) + ")",
+              Place{.option = option});
 }
 
-void check_units(const std::string& units) {
+void check_output_options(const std::string& units, int mesh_density) {
 #ifdef SFIT_HAVE_EXCHANGE
   exchange::check_units(units);
+  exchange::check_mesh_density(mesh_density);
 #else
   (void)units;
+  (void)mesh_density;
 #endif
 }
 
-void write_output(const std::string& path, const OutputContext& context) {
+void write_output(const std::string& path, const OutputContext& context, std::string* text) {
+  if (text) {
+    *text = io::surface_json_text(context.surface, context.fit ? &context.fit->report : nullptr);
+    return;
+  }
   check_output_extension(path);
   writers().at(extension_of(path))(path, context);
 }

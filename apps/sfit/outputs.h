@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sfit/io/file_names.h"
+#include "sfit/io/formats.h"
 #include "sfit/rows.h"
 #include "sfit/surface.h"
 #include "sfit/surface_fit.h"
@@ -26,13 +27,17 @@ struct OutputContext {
 };
 
 using io::extension_of;
-/// Extensions that -o accepts in this build.
-std::vector<std::string> output_extensions();
-/// Throws Error(kUsage, option "-o") if no writer handles the extension of `path`.
-void check_output_extension(const std::string& path);
-/// Throws Error(kUsage, option "--units") unless STEP/IGES can state `units`.
-void check_units(const std::string& units);
-/// Writes `path` in the format of its extension (atomically).
-void write_output(const std::string& path, const OutputContext& context);
+/// Throws Error(kUsage, naming `option`) unless the format registry has a format of `kind`
+/// that this build writes for the extension of `path` (unknown, or known but its part is not
+/// built: both named).
+void check_output_extension(const std::string& path, const std::string& option = "-o",
+                            io::FormatKind kind = io::FormatKind::kSurface);
+/// Checks the options that shape the surface outputs (--units, --mesh-density) before any
+/// work: throws Error(kUsage) naming the option.
+void check_output_options(const std::string& units, int mesh_density);
+/// Writes `path` in the format of its extension (atomically); `text` set: the surface JSON
+/// into *text instead (for standard output).
+void write_output(const std::string& path, const OutputContext& context,
+                  std::string* text = nullptr);
 
 }  // namespace sfit::cli

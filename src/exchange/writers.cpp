@@ -13,12 +13,22 @@ namespace sfit::exchange {
 namespace {
 
 Mesh mesh_for(const Surface& s, const WriteOptions& o) {
+  check_mesh_density(o.mesh_density);
   if (o.mesh_density != 0) return tessellate(s, o.mesh_density, o.mesh_density);
   const Density d = choose_density(s, default_chord(s, o.tolerance));
   return tessellate(s, d.samples_u, d.samples_v);
 }
 
 }  // namespace
+
+void check_mesh_density(int n) {
+  if (n != 0 && (n < kMinMeshDensity || n > kMaxMeshDensity))
+    throw Error(ErrorCode::kUsage,
+                "must be 0 (automatic) or " + std::to_string(kMinMeshDensity) + " ... " +
+                    std::to_string(kMaxMeshDensity) + " samples per direction, got " +
+                    std::to_string(n),
+                Place{.option = "--mesh-density"}, {static_cast<double>(n)});
+}
 
 std::vector<std::string> writer_extensions() {
   return {"step", "stp", "igs", "iges", "obj", "stl", "ply", "vtk", "vts"};

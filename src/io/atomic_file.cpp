@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -41,6 +42,16 @@ void sync_file(const std::string& name) {
   }
 }
 
+thread_local OutputBatch* open_batch = nullptr;
+
+void rename_onto(const std::string& tmp, const std::string& path) {
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    std::remove(tmp.c_str());
+    fail(path, why);
+  }
+}
+
 void commit(const std::string& tmp, const std::string& path) {
   // Keep the permissions of an existing target; a new file gets the usual 0666 & ~umask.
   struct stat st {};
@@ -52,11 +63,8 @@ void commit(const std::string& tmp, const std::string& path) {
     ::chmod(tmp.c_str(), 0666 & ~mask);
   }
   sync_file(tmp);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    std::remove(tmp.c_str());
-    fail(path, why);
-  }
+  if (OutputBatch::stage(tmp, path)) return;  // renamed by OutputBatch::commit()
+  rename_onto(tmp, path);
 }
 
 }  // namespace
@@ -102,6 +110,45 @@ void write_via_temporary(const std::string& path,
   } catch (...) {
     std::remove(tmp.c_str());
     throw;
+  }
+}
+
+OutputBatch::OutputBatch() {
+  if (open_batch)
+    throw Error(ErrorCode::kInternal, "an output batch is already open on this thread");
+  open_batch = this;
+}
+
+OutputBatch::~OutputBatch() {
+  if (open_batch == this) open_batch = nullptr;
+  if (!committed_)
+    for (const auto& [tmp, path] : staged_) std::remove(tmp.c_str());
+}
+
+bool OutputBatch::stage(const std::string& temporary, const std::string& target) {
+  if (!open_batch) return false;
+  open_batch->staged_.emplace_back(temporary, target);
+  return true;
+}
+
+void OutputBatch::commit() {
+  if (open_batch == this) open_batch = nullptr;
+  committed_ = true;
+  for (std::size_t i = 0; i < staged_.size(); ++i) {
+    try {
+      rename_onto(staged_[i].first, staged_[i].second);
+    } catch (...) {
+      for (std::size_t k = i + 1; k < staged_.size(); ++k) std::remove(staged_[k].first.c_str());
+      throw;
+    }
+  }
+  // Make the renames durable too: sync each target folder once.
+  std::vector<std::string> folders;
+  for (const auto& [tmp, path] : staged_) {
+    const std::string dir = folder_of(path);
+    if (std::find(folders.begin(), folders.end(), dir) != folders.end()) continue;
+    folders.push_back(dir);
+    sync_file(dir);
   }
 }
 

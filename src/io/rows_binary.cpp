@@ -61,9 +61,9 @@ RowsFile read_rows_binary(const std::string& path) {
     if (lengths[j] == 0)
       throw Error(ErrorCode::kInputData, "row has no points",
                   Place{.file = path, .row = static_cast<long>(j)});
-    sum += lengths[j];
-    if (sum > P)
+    if (lengths[j] > P - sum)  // never sum += first: crafted lengths could wrap around
       syntax(path, "row lengths add up to more than the " + std::to_string(P) + " points");
+    sum += lengths[j];
   }
   if (sum != P)
     syntax(path, "row lengths add up to " + std::to_string(sum) + ", not " + std::to_string(P));

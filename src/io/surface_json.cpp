@@ -1,10 +1,13 @@
 #include "sfit/io/surface_json.h"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
+#include "input_file.h"
 #include "sfit/error.h"
+#include "sfit/fit_limits.h"
 #include "sfit/io/atomic_file.h"
 #include "sfit/knots.h"
 
@@ -94,10 +97,14 @@ Surface surface_from_json(const json& j, const std::string& name) {
     if (!j.is_object() || j.value("type", "") != "bspline_surface")
       bad(name, "\"type\" must be \"bspline_surface\"");
     Surface s;
-    s.degree_u = j.at("degree").at(0).get<int>();
-    s.degree_v = j.at("degree").at(1).get<int>();
-    if (s.degree_u < 1 || s.degree_u > 20 || s.degree_v < 1 || s.degree_v > 20)
-      bad(name, "degrees must be 1 ... 20");
+    auto degree = [&](int k) {
+      const json& d = j.at("degree").at(k);
+      if (!d.is_number_integer() || d.get<long long>() < 1 || d.get<long long>() > kMaxFitDegree)
+        bad(name, "degrees must be whole numbers 1 ... " + std::to_string(kMaxFitDegree));
+      return static_cast<int>(d.get<long long>());
+    };
+    s.degree_u = degree(0);
+    s.degree_v = degree(1);
     if (j.contains("periodic")) {
       s.periodic_u = j.at("periodic").at(0).get<bool>();
       s.periodic_v = j.at("periodic").at(1).get<bool>();
@@ -131,24 +138,39 @@ Surface surface_from_json(const json& j, const std::string& name) {
   }
 }
 
-Surface read_surface_json(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw Error(ErrorCode::kInputUnreadable, "cannot open surface file", Place{.file = path});
-  json j;
+json read_json_file(const std::string& path) {
+  std::uint64_t size = 0;
+  const detail::InputFile f = detail::open_input(path, &size);
+  std::string text;
+  char buf[1 << 16];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f.get())) > 0;) text.append(buf, n);
+  if (std::ferror(f.get()))
+    throw Error(ErrorCode::kInputUnreadable, "cannot read input: read error", Place{.file = path});
   try {
-    j = json::parse(in);
+    return json::parse(text);
   } catch (const json::parse_error& e) {
     throw Error(ErrorCode::kInputSyntax, std::string("malformed JSON: ") + e.what(),
                 Place{.file = path});
+  } catch (const json::exception& e) {  // 406: number overflow (1e999)
+    throw Error(ErrorCode::kInputData,
+                std::string("a number is out of the range of a double: ") + e.what(),
+                Place{.file = path});
   }
-  return surface_from_json(j, path);
+}
+
+Surface read_surface_json(const std::string& path) {
+  return surface_from_json(read_json_file(path), path);
+}
+
+std::string surface_json_text(const Surface& surface, const FitReport* report) {
+  json j = surface_to_json(surface);
+  if (report) j["report"] = report_to_json(*report);
+  return j.dump() + '\n';
 }
 
 void write_surface_json(const std::string& path, const Surface& surface, const FitReport* report) {
-  json j = surface_to_json(surface);
-  if (report) j["report"] = report_to_json(*report);
-  write_file_atomically(path, [&](std::ostream& out) { out << j.dump() << '\n'; });
+  const std::string text = surface_json_text(surface, report);
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
 void write_report_json(const std::string& path, const FitReport& report) {

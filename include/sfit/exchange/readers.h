@@ -17,6 +17,8 @@ struct SectionsFile {
   Rows rows;
   std::vector<long> first_line;
   std::string name;
+  std::vector<bool> closed;  ///< per row: the curve is closed (its last sample dropped)
+  std::string units;         ///< the file's length unit (mm, m, in, ...): coordinates are in it
 };
 
 /// Each curve gets as many samples as a chordal deflection of kSectionDeflection times the

@@ -22,6 +22,13 @@ struct WriteOptions {
 /// vtk, vts.
 std::vector<std::string> writer_extensions();
 
+/// The densities --mesh-density accepts whatever the surface: 0 (automatic) or
+/// kMinMeshDensity ... kMaxMeshDensity samples per direction (the mesh stays below 5e7
+/// vertices). Throws Error(kUsage, option "--mesh-density") otherwise, before any work.
+inline constexpr int kMinMeshDensity = 3;
+inline constexpr int kMaxMeshDensity = 7000;
+void check_mesh_density(int samples);
+
 /// Writes `surface` to `path` in the format of its extension, atomically.
 /// `fit` and `rows` (either may be null) add the deviation fields to .vtk.
 /// Throws Error(kUsage) for an unknown extension, a bad density or unit, and

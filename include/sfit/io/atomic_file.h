@@ -5,6 +5,8 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace sfit::io {
 
@@ -23,5 +25,28 @@ void write_via_temporary(const std::string& path,
 /// Throws Error(kOutputWrite) if `path` cannot be created: its folder is missing or not
 /// writable, or it is a directory. Lets the CLI refuse before a long fit.
 void check_writable(const std::string& path);
+
+/// All or nothing for several outputs. While a batch is open on this thread,
+/// write_file_atomically() and write_via_temporary() leave each complete, fsync'ed file under
+/// its temporary name beside its target; commit() renames every one onto its target. A batch
+/// destroyed without commit() (a later output failed, a disk filled up) removes every
+/// temporary, so each target is exactly as it was and no new file appears. Batches do not
+/// nest; commit() throws Error(kOutputWrite) naming the target whose rename failed (renames
+/// in one folder of a checked target practically never fail; targets renamed before it stay).
+class OutputBatch {
+ public:
+  OutputBatch();
+  ~OutputBatch();
+  OutputBatch(const OutputBatch&) = delete;
+  OutputBatch& operator=(const OutputBatch&) = delete;
+  /// Renames every staged temporary onto its target, in the order they were written.
+  void commit();
+  /// Used by the writers: true if a batch is open on this thread, and stages (tmp, target).
+  static bool stage(const std::string& temporary, const std::string& target);
+
+ private:
+  std::vector<std::pair<std::string, std::string>> staged_;  // (temporary, target)
+  bool committed_ = false;
+};
 
 }  // namespace sfit::io
