@@ -13,8 +13,7 @@ namespace sfit::exchange {
 namespace {
 
 [[noreturn]] void unavailable(const std::string& path) {
-  throw Error(ErrorCode::kUsage,
-              "STEP and IGES are off: this sfit was built without OpenCASCADE",
+  throw Error(ErrorCode::kUsage, "STEP and IGES are off: this sfit was built without OpenCASCADE",
               Place{.file = path});
 }
 
@@ -35,6 +34,8 @@ bool is_exchange_input(const std::string& path) {
   return e == "step" || e == "stp" || e == "igs" || e == "iges";
 }
 
-SectionsFile read_sections(const std::string& path) { unavailable(path); }
+SectionsFile read_sections(const std::string& path) {
+  unavailable(path);
+}
 
 }  // namespace sfit::exchange
