@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   o.degree_u = o.degree_v = 2;
   o.tolerance = sfit::Point::Constant(1e-6);
   const auto r = sfit::fit_surface(rows, o);
-  const std::string json = sfit::io::surface_to_json(r.surface).dump();
+  const std::string json = sfit::io::surface_to_json_text(r.surface, &r.report);
   std::printf("consumer: sfit %s, %d x %d, within tolerance: %s, json %zu bytes\n", sfit::kVersion,
               r.surface.count_u, r.surface.count_v, r.report.within_tolerance ? "yes" : "no",
               json.size());
