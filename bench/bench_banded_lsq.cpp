@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "banded_lsq.h"
-#include "sfit/basis.h"
-#include "sfit/parametrization.h"
+#include "basis.h"
+#include "parameters.h"
 
 namespace sfit::bench {
 namespace {

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fuzz_common.h"
-#include "sfit/io/surface_json.h"
+#include "surface_json_value.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace sfit;

@@ -1,4 +1,4 @@
-#include "sfit/basis.h"
+#include "basis.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "reference_eval.h"
 #include "sfit/curve.h"
-#include "sfit/knots.h"
+#include "knots.h"
 
 namespace sfit {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "sfit/error.h"
 #include "sfit/incremental.h"
-#include "sfit/parametrization.h"
+#include "parameters.h"
 #include "sfit/surface_fit.h"
 #include "test_support.h"
 

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "reference_eval.h"
-#include "sfit/io/surface_json.h"
+#include "surface_json_value.h"
 #include "sfit/surface_fit.h"
 #include "test_support.h"
 

@@ -1,4 +1,4 @@
-#include "sfit/knots.h"
+#include "knots.h"
 
 #include <gtest/gtest.h>
 

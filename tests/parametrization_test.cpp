@@ -1,10 +1,10 @@
-#include "sfit/parametrization.h"
+#include "parameters.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "sfit/knots.h"
+#include "knots.h"
 
 namespace sfit {
 namespace {

@@ -1,5 +1,5 @@
-#include "sfit/rerepresent.h"
-#include "sfit/parametrization.h"
+#include "rerepresent.h"
+#include "parameters.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "sfit/deviation.h"
+#include "deviation.h"
 #include "sfit/error.h"
 #include "test_support.h"
 

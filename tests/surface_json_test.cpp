@@ -1,4 +1,4 @@
-#include "sfit/io/surface_json.h"
+#include "surface_json_value.h"
 
 #include <gtest/gtest.h>
 

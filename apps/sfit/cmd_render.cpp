@@ -16,7 +16,7 @@
 #include "picture_options.h"
 #include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
-#include "sfit/io/surface_json.h"
+#include "surface_json_value.h"
 #include "sfit/render/deviations.h"
 #include "sfit/render/row_picture.h"
 #include "sfit/render/surface_picture.h"

@@ -7,6 +7,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "sfit/error.h"
+#include "sfit/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -14,7 +15,7 @@ int main(int argc, char** argv) {
       "tolerance, with as few control points as possible, on uniform knots\n"
       "(Vergeest 1989, SFIT01), and checks every data point on the result."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("sfit ") + "0.1.0");
+  app.set_version_flag("--version", std::string("sfit ") + sfit::kVersion);
   app.footer(
       "Run 'sfit COMMAND --help' for the options of a command.\n"
       "Exit codes: 0 ok, 2 usage, 3 input unreadable (also: a STEP/IGES file the CAD kernel\n"
@@ -38,7 +39,7 @@ int main(int argc, char** argv) {
     std::printf("%s", app.help("", CLI::AppFormatMode::All).c_str());
     return 0;
   } catch (const CLI::CallForVersion&) {
-    std::printf("sfit 0.1.0\n");
+    std::printf("sfit %s\n", sfit::kVersion);
     return 0;
   } catch (const CLI::ParseError& e) {
     std::string msg = e.what();

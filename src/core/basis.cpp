@@ -1,4 +1,4 @@
-#include "sfit/basis.h"
+#include "basis.h"
 
 #include <algorithm>
 #include <array>

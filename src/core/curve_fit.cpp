@@ -8,9 +8,9 @@
 #include <tuple>
 
 #include "banded_lsq.h"
-#include "sfit/basis.h"
+#include "basis.h"
 #include "sfit/error.h"
-#include "sfit/parametrization.h"
+#include "parameters.h"
 #include "thread_cache.h"
 
 namespace sfit {

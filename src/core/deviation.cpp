@@ -1,11 +1,11 @@
-#include "sfit/deviation.h"
+#include "deviation.h"
 
 #include <array>
 #include <cmath>
 #include <limits>
 
 #include "parallel.h"
-#include "sfit/basis.h"
+#include "basis.h"
 
 namespace sfit {
 

@@ -1,9 +1,9 @@
-#include "sfit/parametrization.h"
+#include "parameters.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "sfit/knots.h"
+#include "knots.h"
 
 namespace sfit {
 namespace {

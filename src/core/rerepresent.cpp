@@ -1,4 +1,4 @@
-#include "sfit/rerepresent.h"
+#include "rerepresent.h"
 
 #include <algorithm>
 #include <array>
@@ -8,8 +8,8 @@
 #include <tuple>
 
 #include "banded_lsq.h"
-#include "sfit/basis.h"
-#include "sfit/parametrization.h"
+#include "basis.h"
+#include "parameters.h"
 #include "thread_cache.h"
 
 namespace sfit {

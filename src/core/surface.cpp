@@ -2,8 +2,8 @@
 
 #include <array>
 
-#include "sfit/basis.h"
-#include "sfit/knots.h"
+#include "basis.h"
+#include "knots.h"
 
 namespace sfit {
 

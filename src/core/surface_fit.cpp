@@ -9,11 +9,11 @@
 #include <string>
 
 #include "parallel.h"
-#include "sfit/basis.h"
-#include "sfit/deviation.h"
+#include "basis.h"
+#include "deviation.h"
 #include "sfit/error.h"
-#include "sfit/parametrization.h"
-#include "sfit/rerepresent.h"
+#include "parameters.h"
+#include "rerepresent.h"
 #include "surface_fitter.h"
 
 namespace sfit {

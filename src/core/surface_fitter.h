@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "sfit/rerepresent.h"
+#include "rerepresent.h"
 #include "sfit/surface_fit.h"
 
 namespace sfit::detail {

@@ -23,6 +23,7 @@
 #include "occt_common.h"
 #include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
+#include "sfit/version.h"
 
 namespace sfit::exchange {
 
@@ -126,7 +127,7 @@ void write_step(const std::string& path, const Surface& s, const CadOptions& o) 
     header.SetName(new TCollection_HAsciiString(product_name(path, o).c_str()));
     header.SetAuthorValue(1, new TCollection_HAsciiString("sfit"));
     header.SetOrganizationValue(1, new TCollection_HAsciiString(""));
-    header.SetOriginatingSystem(new TCollection_HAsciiString("sfit 0.1.0 (OpenCASCADE 7.6)"));
+    header.SetOriginatingSystem(new TCollection_HAsciiString("sfit " SFIT_VERSION_STRING " (OpenCASCADE 7.6)"));
     header.SetDescriptionValue(
         1, new TCollection_HAsciiString("B-spline surface fitted by sfit (Vergeest 1989, SFIT01)"));
     io::write_via_temporary(path, [&](const std::string& tmp) {

@@ -8,6 +8,7 @@
 #include <ostream>
 
 #include "sfit/io/atomic_file.h"
+#include "sfit/version.h"
 
 namespace sfit::exchange {
 
@@ -45,7 +46,7 @@ void write_text(const std::string& path, const std::string& text) {
   });
 }
 
-const char* kBanner = "sfit 0.1.0 B-spline surface (Vergeest 1989, SFIT01)";
+const char* kBanner = "sfit " SFIT_VERSION_STRING " B-spline surface (Vergeest 1989, SFIT01)";
 
 }  // namespace
 

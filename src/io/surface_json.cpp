@@ -1,4 +1,4 @@
-#include "sfit/io/surface_json.h"
+#include "surface_json_value.h"
 
 #include <cmath>
 #include <cstdio>
@@ -9,7 +9,7 @@
 #include "sfit/error.h"
 #include "sfit/fit_limits.h"
 #include "sfit/io/atomic_file.h"
-#include "sfit/knots.h"
+#include "knots.h"
 
 namespace sfit::io {
 
@@ -166,6 +166,27 @@ std::string surface_json_text(const Surface& surface, const FitReport* report) {
   json j = surface_to_json(surface);
   if (report) j["report"] = report_to_json(*report);
   return j.dump() + '\n';
+}
+
+std::string surface_to_json_text(const Surface& surface, const FitReport* report, int indent) {
+  json j = surface_to_json(surface);
+  if (report) j["report"] = report_to_json(*report);
+  return j.dump(indent);
+}
+
+std::string report_to_json_text(const FitReport& report, int indent) {
+  return report_to_json(report).dump(indent);
+}
+
+Surface surface_from_json_text(std::string_view text, const std::string& name) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw Error(ErrorCode::kInputSyntax, std::string("malformed JSON: ") + e.what(),
+                Place{.file = name});
+  }
+  return surface_from_json(j, name);
 }
 
 void write_surface_json(const std::string& path, const Surface& surface, const FitReport* report) {

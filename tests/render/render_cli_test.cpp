@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "picture_checks.h"
-#include "sfit/io/surface_json.h"
+#include "surface_json_value.h"
 #include "sfit/render/image.h"
 #include "test_support.h"
 

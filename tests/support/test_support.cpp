@@ -16,7 +16,7 @@
 
 #include "reference_eval.h"
 #include "sfit/io/rows_reader.h"
-#include "sfit/io/surface_json.h"
+#include "surface_json_value.h"
 
 namespace sfit::test {
 

@@ -1,29 +1,30 @@
-// The surface and report JSON of docs/surface-json.md.
+// The surface and report JSON of docs/surface-json.md, read and written as text.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 #include "sfit/surface.h"
 #include "sfit/surface_fit.h"
 
 namespace sfit::io {
 
-/// The surface in the contract's form: full knot vectors, full control arrays (a periodic
-/// direction stores its wrap copies), `periodic` flags. Doubles round-trip exactly.
-nlohmann::json surface_to_json(const Surface& surface);
+/// The surface as JSON text in the contract's form (full knot vectors, full control arrays, a
+/// periodic direction with its wrap copies, `periodic` flags; doubles round-trip exactly),
+/// with the fit report under "report" when `report` is given. `indent` < 0: one line.
+std::string surface_to_json_text(const Surface& surface, const FitReport* report = nullptr,
+                                 int indent = -1);
 
-/// The report keys of the contract plus sfit's extras (degree, closed, column_counts,
-/// raised/repaired counts, solves).
-nlohmann::json report_to_json(const FitReport& report);
+/// The report alone as JSON text: the contract's keys plus sfit's extras.
+std::string report_to_json_text(const FitReport& report, int indent = 2);
 
-/// Reads a surface in the contract's form; `name` is used in messages.
+/// Reads a surface from JSON text in the contract's form; `name` is used in messages.
 /// Throws Error(kInputSyntax) for malformed JSON and Error(kInputData) for a surface that
 /// breaks the contract (knot vector lengths, non-uniform knots sfit cannot represent, a
 /// periodic direction whose wrap copies differ, non-finite numbers).
-Surface surface_from_json(const nlohmann::json& j, const std::string& name);
+Surface surface_from_json_text(std::string_view text, const std::string& name);
 
-/// Reads a surface file written by surface_to_json (or any tool keeping the contract with
+/// Reads a surface file written by write_surface_json (or any tool keeping the contract with
 /// sfit's uniform knots).
 Surface read_surface_json(const std::string& path);
 
