@@ -113,7 +113,7 @@ void sample_edge(const TopoDS_Edge& edge, double deflection, double same, std::v
 
 // A rough box of the curves themselves (not of their control points: one far pole must not
 // make every section look like a point): a few samples per edge in parameter.
-double curves_diagonal(const TopoDS_Shape& shape) {
+double curves_diagonal(const TopoDS_Shape& shape, const std::string& path) {
   Point lo = Point::Constant(INFINITY), hi = Point::Constant(-INFINITY);
   for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More(); e.Next()) {
     const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
@@ -129,7 +129,16 @@ double curves_diagonal(const TopoDS_Shape& shape) {
       hi = hi.cwiseMax(q);
     }
   }
-  return (hi.array() >= lo.array()).all() ? (hi - lo).norm() : 0.0;
+  if (!(hi.array() >= lo.array()).all()) return 0.0;
+  const double largest = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  if (largest > 1e150) {
+    const Point& p = lo.cwiseAbs().maxCoeff() >= hi.cwiseAbs().maxCoeff() ? lo : hi;
+    throw Error(ErrorCode::kInputData,
+                "a curve reaches " + g(largest) + " (box corner (" + g(p.x()) + ", " + g(p.y()) +
+                    ", " + g(p.z()) + ")), out of the range sfit computes in (|x| <= 1e150)",
+                Place{.file = path}, {largest});
+  }
+  return (hi - lo).norm();
 }
 
 // Every curve of a geometric curve set (STEP) must have become a shape.
@@ -234,7 +243,7 @@ SectionsFile read_sections_here(const std::string& path) {
     out.units = unit ? unit->ours : "mm (converted from " + unit_note + ")";
     if (shape.IsNull())
       fail(ErrorCode::kInputData, path, "the file holds no geometry OpenCASCADE can transfer");
-    const double diagonal = curves_diagonal(shape);
+    const double diagonal = curves_diagonal(shape, path);
     if (!(diagonal > 0) || !std::isfinite(diagonal)) {
       bool any_edge = false;
       for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More() && !any_edge; e.Next()) any_edge = true;
