@@ -149,7 +149,8 @@ Input read_input(const std::string& path) {
 #ifdef SFIT_HAVE_EXCHANGE
   if (exchange::is_exchange_input(path)) {
     auto r = exchange::read_sections(path);
-    say(path + ": lengths in " + r.units + " (the file's unit; not converted)");
+    say(path + ": lengths in " + r.units +
+        (r.units.find(' ') == std::string::npos ? " (the file's own unit, not converted)" : ""));
     return Input{std::move(r.rows), std::move(r.first_line), path, std::move(r.closed),
                  std::move(r.units)};
   }

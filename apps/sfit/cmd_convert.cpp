@@ -45,7 +45,7 @@ void add_convert_command(CLI::App& app, Runner& run) {
   c->add_option("SURFACE", args->input, "surface file written by 'sfit fit' (.json)")->required();
   c->add_option("-o,--output", args->outputs, "output file(s); the extension picks the format");
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh");
-  c->add_option("--mesh-density", args->mesh_density, "tessellation samples per direction");
+  c->add_option("--mesh-density", args->mesh_density, mesh_density_help());
   c->add_flag("--fields", args->fields, "add curvature point data (.vtk/.vts)");
   c->add_option("--units", args->units,
                 "length unit the STEP/IGES file states (mm, cm, m, km, um, in, ft, mi)")

@@ -197,8 +197,7 @@ void add_fit_command(CLI::App& app, Runner& run) {
                 "threads, 0 (all cores) ... " + std::to_string(kMaxThreads) +
                     "; results do not depend on it");
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");
-  c->add_option("--mesh-density", args->mesh_density,
-                "tessellation samples per direction (default: from the tolerance)");
+  c->add_option("--mesh-density", args->mesh_density, mesh_density_help());
   c->add_flag("--fields", args->fields, "add deviation and curvature point data (.vtk/.vts)");
   c->add_option("--units", args->units,
                 "length unit the STEP/IGES outputs state (mm, cm, m, km, um, in, ft, mi; "

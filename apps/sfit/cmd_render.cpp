@@ -188,7 +188,13 @@ int run_render(const RenderArgs& a) {
                  : a.picture.title,
              describe(surface, have_data ? data.rows.total_points() : 0,
                       have_data ? data.rows.size() : 0, tol.x() >= 0 ? &tol : nullptr, a.picture)};
-  const render::RenderResult r = render::render_surface(scene, o);
+  render::RenderResult r;
+  try {
+    r = render::render_surface(scene, o);
+  } catch (const Error& e) {  // the surface's own fault: name its file
+    if (e.code() != ErrorCode::kInputData || !e.place().file.empty()) throw;
+    throw Error(e.code(), e.message(), Place{.file = a.surface}, e.values());
+  }
   if (mode == render::Mode::kDeviation && r.worst_point >= 0) {
     const auto& off = data.rows.offsets();
     const long row =

@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "sfit: fits one smooth B-spline surface to rows of 3D points, within a per-axis\n"
       "tolerance, with as few control points as possible, on uniform knots\n"
-      "(Vergeest 1989, SFIT01), and checks every data point on the result."};
+      "(Vergeest 1989, SFIT01), and checks every data point on the result.",
+      "sfit"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("sfit ") + sfit::kVersion);
   app.footer(

@@ -70,6 +70,16 @@ void check_output_options(const std::string& units, int mesh_density) {
 #endif
 }
 
+std::string mesh_density_help() {
+#ifdef SFIT_HAVE_EXCHANGE
+  return "tessellation samples per direction, " + std::to_string(exchange::kMinMeshDensity) +
+         " ... " + std::to_string(exchange::kMaxMeshDensity) +
+         " (default 0: from the tolerance; see docs/cli.md)";
+#else
+  return "tessellation samples per direction (this build has no mesh formats)";
+#endif
+}
+
 void write_output(const std::string& path, const OutputContext& context, std::string* text) {
   if (text) {
     *text = io::surface_json_text(context.surface, context.fit ? &context.fit->report : nullptr);

@@ -35,6 +35,8 @@ void check_output_extension(const std::string& path, const std::string& option =
 /// Checks the options that shape the surface outputs (--units, --mesh-density) before any
 /// work: throws Error(kUsage) naming the option.
 void check_output_options(const std::string& units, int mesh_density);
+/// Help text of --mesh-density with the range the mesh part accepts.
+std::string mesh_density_help();
 /// Writes `path` in the format of its extension (atomically); `text` set: the surface JSON
 /// into *text instead (for standard output).
 void write_output(const std::string& path, const OutputContext& context,

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # CI stage: build the libFuzzer targets (preset 'fuzz': clang, ASan + UBSan) and run each for
-# FUZZ_SECONDS (default 60) on a corpus seeded from the data sets of examples/ and
-# tests/bad_input/. Prints one summary line per target; fails if any target finds a crash,
-# a hang (a unit over 10 s), a leak or a sanitizer report. Crashing inputs are kept in
+# FUZZ_SECONDS (default 60) on corpora seeded from examples/, tests/bad_input/ and STEP/IGES
+# section files written by make_section_seeds. Prints one summary line per target; fails if
+# any target finds a crash, a hang (a unit over 10 s), a leak or a sanitizer report.
+# Crashing inputs are kept in
 # build-fuzz/artifacts/. Environment: FUZZ_SECONDS, FUZZ_WORK (default build-fuzz/run).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
@@ -17,7 +18,7 @@ cli=build-fuzz/apps/sfit/sfit
 
 # --- seed corpora ---------------------------------------------------------------------------
 rm -rf "$work"
-mkdir -p "$work"/{rows,fitter,surface_json} build-fuzz/artifacts
+mkdir -p "$work"/{rows,fitter,surface_json,sections} build-fuzz/artifacts
 sources=(tests/bad_input/*.rows examples/*.rows)
 n=0
 for f in "${sources[@]}"; do
@@ -35,7 +36,10 @@ for f in tests/bad_input/good.rows "$work"/rows/*; do
   "$cli" fit "$f" -q -o "$work/surface_json/$(basename "$f").json" 2>/dev/null || true
   "$cli" fit "$f" -q --closed v --degree 2 -o "$work/surface_json/$(basename "$f")-v.json" 2>/dev/null || true
 done
-echo "fuzz: seeds: $(ls "$work/rows" | wc -l) rows, $(ls "$work/fitter" | wc -l) fitter, $(ls "$work/surface_json" | wc -l) surface"
+# Section seeds: small STEP/IGES curve files made by this build (OpenCASCADE's writers).
+# (OpenCASCADE keeps some allocations to exit: no leak check for this tool.)
+[ -x "$bin/make_section_seeds" ] && ASAN_OPTIONS=detect_leaks=0 "$bin/make_section_seeds" "$work/sections" >/dev/null
+echo "fuzz: seeds: $(ls "$work/rows" | wc -l) rows, $(ls "$work/fitter" | wc -l) fitter, $(ls "$work/surface_json" | wc -l) surface, $(ls "$work/sections" | wc -l) sections"
 
 # --- runs -----------------------------------------------------------------------------------
 status=0
@@ -63,6 +67,7 @@ run() {
 run fuzz_rows_reader rows fuzz/rows.dict
 run fuzz_fitter fitter fuzz/rows.dict
 run fuzz_surface_json surface_json fuzz/surface.dict
+[ -x "$bin/fuzz_section_reader" ] && run fuzz_section_reader sections fuzz/section.dict
 echo "fuzz: ${seconds} s per target, $(($(date +%s) - start)) s in all"
 printf 'fuzz: %s\n' "${summary[@]}"
 exit $status

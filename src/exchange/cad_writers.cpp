@@ -29,52 +29,15 @@ namespace sfit::exchange {
 
 namespace {
 
-// Our unit names, OCCT's (write.step.unit, IGES global section) and the size in millimetres.
-struct Unit {
-  const char* ours;
-  const char* occt;
-  double mm;
-};
-constexpr std::array<Unit, 8> kUnits{{{"mm", "MM", 1.0},
-                                      {"cm", "CM", 10.0},
-                                      {"m", "M", 1000.0},
-                                      {"km", "KM", 1e6},
-                                      {"um", "UM", 1e-3},
-                                      {"in", "INCH", 25.4},
-                                      {"ft", "FT", 304.8},
-                                      {"mi", "MI", 1609344.0}}};
+using detail::kUnits;
+using detail::SessionUnit;
+using detail::Unit;
 
 const Unit& find_unit(const std::string& units) {
-  for (const auto& u : kUnits)
-    if (units == u.ours) return u;
+  if (const Unit* u = detail::unit_named(units)) return *u;
   check_units(units);  // throws
   return kUnits[0];
 }
-
-// OCCT keeps the session's length unit in globals (Interface_Static and UnitsMethods) and
-// scales shapes from it to the file's unit. Our coordinates are in the file's unit already:
-// set the session unit to it for the transfer, and restore the caller's afterwards.
-class SessionUnit {
- public:
-  explicit SessionUnit(const Unit& u)
-      : static_(Interface_Static::IsSet("xstep.cascade.unit")
-                    ? Interface_Static::CVal("xstep.cascade.unit")
-                    : "MM"),
-        methods_(UnitsMethods::GetCasCadeLengthUnit()) {
-    Interface_Static::SetCVal("xstep.cascade.unit", u.occt);
-    UnitsMethods::SetCasCadeLengthUnit(u.mm);
-  }
-  ~SessionUnit() {
-    Interface_Static::SetCVal("xstep.cascade.unit", static_.c_str());
-    UnitsMethods::SetCasCadeLengthUnit(methods_);
-  }
-  SessionUnit(const SessionUnit&) = delete;
-  SessionUnit& operator=(const SessionUnit&) = delete;
-
- private:
-  std::string static_;
-  double methods_;
-};
 
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
   throw Error(ErrorCode::kOutputWrite, "cannot write output: " + why, Place{.file = path});

@@ -3,10 +3,12 @@
 #include <Eigen/Geometry>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <ostream>
 
+#include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
 #include "sfit/version.h"
 
@@ -119,7 +121,34 @@ void write_obj_mesh(const std::string& path, const Mesh& m) {
   write_text(path, o);
 }
 
+// STL holds float32: refuse a mesh whose coordinates overflow it (inf) or whose size it
+// cannot resolve (every vertex rounded onto a few float values), before anything is written.
+void check_float32_range(const std::string& path, const Mesh& m) {
+  Point lo = Point::Constant(INFINITY), hi = Point::Constant(-INFINITY);
+  for (const Point& p : m.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  if (m.vertices.empty()) return;
+  const double largest = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  const double size = (hi - lo).norm();
+  constexpr double kMax = std::numeric_limits<float>::max();
+  const double least = std::max(1e-30, largest * 1e-6);  // float32 keeps ~7 digits
+  char why[200];
+  if (largest > kMax)
+    std::snprintf(why, sizeof why, "coordinates reach %.3g, beyond float32's %.3g", largest, kMax);
+  else if (size < least)
+    std::snprintf(why, sizeof why, "the surface spans %.3g, which float32 does not resolve", size);
+  else
+    return;
+  throw Error(ErrorCode::kOutputWrite,
+              std::string("cannot write output: STL stores float32 and ") + why +
+                  " (write .ply, .vtk or .step instead)",
+              Place{.file = path}, {largest, size});
+}
+
 void write_stl(const std::string& path, const Mesh& m) {
+  check_float32_range(path, m);
   std::string o;
   o.reserve(84 + m.triangles.size() * 50);
   std::string header = std::string(kBanner) + " tessellation";

@@ -6,6 +6,7 @@
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <cmath>
 
 namespace sfit::exchange::detail {
 
@@ -44,9 +45,22 @@ void quiet_occt() {
     const Message_SequenceOfPrinters& printers = Message::DefaultMessenger()->Printers();
     for (Message_SequenceOfPrinters::Iterator it(printers); it.More(); it.Next())
       it.Value()->SetTraceLevel(Message_Fail);
+    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_Printer));
     return true;
   }();
   (void)done;
+}
+
+const Unit* unit_named(const std::string& ours) {
+  for (const Unit& u : kUnits)
+    if (ours == u.ours) return &u;
+  return nullptr;
+}
+
+const Unit* unit_of_size(double mm) {
+  for (const Unit& u : kUnits)
+    if (std::abs(mm - u.mm) <= 1e-9 * u.mm) return &u;
+  return nullptr;
 }
 
 std::string describe(const Standard_Failure& f) {

@@ -2,7 +2,10 @@
 #pragma once
 
 #include <Geom_BSplineSurface.hxx>
+#include <Interface_Static.hxx>
 #include <Standard_Failure.hxx>
+#include <UnitsMethods.hxx>
+#include <array>
 #include <string>
 
 #include "sfit/surface.h"
@@ -14,7 +17,52 @@ namespace sfit::exchange::detail {
 /// one) and the periodic flags, so it evaluates to Surface::evaluate() at the same (u, v).
 Handle(Geom_BSplineSurface) to_occt(const Surface& surface);
 
-/// Turns OCCT's console chatter (transfer statistics) down to failures only.
+/// Our unit names, OCCT's (write.step.unit, IGES global section) and the size in millimetres.
+struct Unit {
+  const char* ours;
+  const char* occt;
+  double mm;
+};
+inline constexpr std::array<Unit, 8> kUnits{{{"mm", "MM", 1.0},
+                                             {"cm", "CM", 10.0},
+                                             {"m", "M", 1000.0},
+                                             {"km", "KM", 1e6},
+                                             {"um", "UM", 1e-3},
+                                             {"in", "INCH", 25.4},
+                                             {"ft", "FT", 304.8},
+                                             {"mi", "MI", 1609344.0}}};
+/// The unit called `ours` ("mm", "m", ...), or nullptr.
+const Unit* unit_named(const std::string& ours);
+/// The unit of a size in millimetres (1000: "m"), within 1e-9; nullptr if none.
+const Unit* unit_of_size(double mm);
+
+/// OCCT keeps the session's length unit in globals (Interface_Static and UnitsMethods) and
+/// scales shapes between it and a file's unit. Sets the session unit to `u` for one transfer
+/// (so coordinates stay in the file's unit), and restores the caller's afterwards.
+class SessionUnit {
+ public:
+  explicit SessionUnit(const Unit& u)
+      : static_(Interface_Static::IsSet("xstep.cascade.unit")
+                    ? Interface_Static::CVal("xstep.cascade.unit")
+                    : "MM"),
+        methods_(UnitsMethods::GetCasCadeLengthUnit()) {
+    Interface_Static::SetCVal("xstep.cascade.unit", u.occt);
+    UnitsMethods::SetCasCadeLengthUnit(u.mm);
+  }
+  ~SessionUnit() {
+    Interface_Static::SetCVal("xstep.cascade.unit", static_.c_str());
+    UnitsMethods::SetCasCadeLengthUnit(methods_);
+  }
+  SessionUnit(const SessionUnit&) = delete;
+  SessionUnit& operator=(const SessionUnit&) = delete;
+
+ private:
+  std::string static_;
+  double methods_;
+};
+
+/// Silences OCCT's console output (transfer statistics, coloured messages on stdout): the
+/// default printers are removed; sfit reports failures itself from the return statuses.
 void quiet_occt();
 
 /// "Standard_Failure: message" for error texts.

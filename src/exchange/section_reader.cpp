@@ -1,27 +1,20 @@
+// Section curves from STEP/IGES files, read by OpenCASCADE in a child process (section_child.h)
+// so that nothing the CAD kernel does with a bad file can take the caller down.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
-#include <BRepAdaptor_Curve.hxx>
-#include <BRepBndLib.hxx>
-#include <BRepTools_WireExplorer.hxx>
-#include <BRep_Tool.hxx>
-#include <Bnd_Box.hxx>
-#include <GCPnts_QuasiUniformAbscissa.hxx>
-#include <GCPnts_QuasiUniformDeflection.hxx>
-#include <IFSelect_ReturnStatus.hxx>
-#include <IGESControl_Controller.hxx>
-#include <IGESControl_Reader.hxx>
-#include <Interface_InterfaceModel.hxx>
-#include <STEPControl_Controller.hxx>
-#include <STEPControl_Reader.hxx>
-#include <TopExp_Explorer.hxx>
-#include <TopoDS.hxx>
-#include <TopoDS_Edge.hxx>
-#include <TopoDS_Shape.hxx>
-#include <TopoDS_Wire.hxx>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cerrno>
+#include <chrono>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
-#include "occt_common.h"
+#include "section_child.h"
 #include "sfit/error.h"
 #include "sfit/exchange/readers.h"
 #include "sfit/io/file_names.h"
@@ -30,50 +23,161 @@ namespace sfit::exchange {
 
 namespace {
 
-bool is_step(const std::string& e) {
-  return e == "step" || e == "stp";
-}
-bool is_iges(const std::string& e) {
-  return e == "igs" || e == "iges";
-}
-
 [[noreturn]] void fail(ErrorCode code, const std::string& path, const std::string& msg,
                        long row = -1) {
   throw Error(code, msg, Place{.file = path, .row = row});
 }
 
-// Samples one edge in its orientation; appends to `out` (skipping a first sample equal to
-// the last one already there, where edges of a wire meet).
-void sample_edge(const TopoDS_Edge& edge, double deflection, double same, std::vector<Point>& out) {
-  if (BRep_Tool::Degenerated(edge)) return;
-  BRepAdaptor_Curve c(edge);
-  std::vector<Point> pts;
-  // As many samples as the deflection needs, spread uniformly in arc length (points bunched
-  // where the curve bends would make the fit's chord-length parameters uneven).
-  int n = kMinSectionSamples;
-  GCPnts_QuasiUniformDeflection d(c, deflection);
-  if (d.IsDone()) n = std::max(n, d.NbPoints());
-  GCPnts_QuasiUniformAbscissa a(c, n);
-  if (!a.IsDone()) return;
-  for (int k = 1; k <= a.NbPoints(); ++k) {
-    const gp_Pnt p = c.Value(a.Parameter(k));
-    pts.emplace_back(p.X(), p.Y(), p.Z());
+// --- the child's answer on the pipe ----------------------------------------------------------
+// 'R' units rows { closed n x y z ... }  or  'E' code row message.
+void put(std::string& b, const void* p, std::size_t n) {
+  b.append(static_cast<const char*>(p), n);
+}
+template <class T>
+void put(std::string& b, T v) {
+  put(b, &v, sizeof v);
+}
+void put_text(std::string& b, const std::string& s) {
+  put<std::uint32_t>(b, static_cast<std::uint32_t>(s.size()));
+  b += s;
+}
+
+struct Cursor {
+  const std::string& b;
+  std::size_t at = 0;
+  bool ok = true;
+  template <class T>
+  T get() {
+    T v{};
+    if (at + sizeof v > b.size()) {
+      ok = false;
+      return v;
+    }
+    std::memcpy(&v, b.data() + at, sizeof v);
+    at += sizeof v;
+    return v;
   }
-  if (edge.Orientation() == TopAbs_REVERSED) std::reverse(pts.begin(), pts.end());
-  for (const Point& p : pts)
-    if (out.empty() || (out.back() - p).norm() > same) out.push_back(p);
+  std::string text() {
+    const auto n = get<std::uint32_t>();
+    if (!ok || at + n > b.size()) {
+      ok = false;
+      return {};
+    }
+    std::string s = b.substr(at, n);
+    at += n;
+    return s;
+  }
+};
+
+std::string encode(const SectionsFile& f) {
+  std::string b = "R";
+  put_text(b, f.units);
+  put<std::uint64_t>(b, f.rows.size());
+  for (std::size_t j = 0; j < f.rows.size(); ++j) {
+    const auto row = f.rows[j];
+    put<std::uint8_t>(b, j < f.closed.size() && f.closed[j] ? 1 : 0);
+    put<std::uint64_t>(b, row.size());
+    put(b, row.data(), row.size() * sizeof(Point));
+  }
+  return b;
+}
+
+std::string encode(const Error& e) {
+  std::string b = "E";
+  put<std::int32_t>(b, static_cast<std::int32_t>(e.code()));
+  put<std::int64_t>(b, e.place().row);
+  put_text(b, e.message());
+  return b;
+}
+
+// Decodes the child's answer; false if it is not a whole one.
+bool decode(const std::string& b, const std::string& path, SectionsFile& out) {
+  if (b.empty()) return false;
+  Cursor c{b, 1};
+  if (b[0] == 'E') {
+    const auto code = c.get<std::int32_t>();
+    const auto row = c.get<std::int64_t>();
+    const std::string msg = c.text();
+    if (!c.ok || code < 0 || code > static_cast<int>(ErrorCode::kInternal)) return false;
+    fail(static_cast<ErrorCode>(code), path, msg, static_cast<long>(row));
+  }
+  if (b[0] != 'R') return false;
+  out.units = c.text();
+  const auto rows = c.get<std::uint64_t>();
+  if (!c.ok || rows > b.size()) return false;
+  std::vector<Point> pts;
+  for (std::uint64_t j = 0; j < rows; ++j) {
+    out.closed.push_back(c.get<std::uint8_t>() != 0);
+    const auto n = c.get<std::uint64_t>();
+    if (!c.ok || n > (b.size() - c.at) / sizeof(Point)) return false;
+    pts.resize(n);
+    std::memcpy(pts.data(), b.data() + c.at, n * sizeof(Point));
+    c.at += n * sizeof(Point);
+    out.rows.add_row(pts);
+  }
+  return c.ok && c.at == b.size();
+}
+
+void write_all(int fd, const std::string& b) {
+  std::size_t done = 0;
+  while (done < b.size()) {
+    const ssize_t n = ::write(fd, b.data() + done, b.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+[[noreturn]] void child(const std::string& path, int fd) {
+  // Die of a crash rather than handle it (a sanitizer's or test framework's handlers are
+  // inherited); no core file; OpenCASCADE's console messages go nowhere.
+  for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGALRM, SIGTERM})
+    ::signal(sig, SIG_DFL);
+  ::signal(SIGPIPE, SIG_IGN);
+  rlimit core{0, 0};
+  ::setrlimit(RLIMIT_CORE, &core);
+  const int null = ::open("/dev/null", O_WRONLY);
+  if (null >= 0) {
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+  }
+  std::string answer;
+  try {
+    answer = encode(detail::read_sections_here(path));
+  } catch (const Error& e) {
+    answer = encode(e);
+  } catch (const std::bad_alloc&) {
+    answer = encode(Error(ErrorCode::kInputData, "cannot read the file: out of memory"));
+  } catch (...) {
+    answer = encode(
+        Error(ErrorCode::kInputUnreadable, "cannot read the file: the CAD kernel failed on it"));
+  }
+  write_all(fd, answer);
+  ::_exit(0);
+}
+
+std::string describe_status(int status) {
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    const char* name = ::strsignal(sig);
+    return "OpenCASCADE crashed on it (signal " + std::to_string(sig) + ", " +
+           (name ? name : "unknown") + ")";
+  }
+  if (WIFEXITED(status))
+    return "the reader stopped (exit " + std::to_string(WEXITSTATUS(status)) + ")";
+  return "the reader stopped";
 }
 
 }  // namespace
 
 bool is_exchange_input(const std::string& path) {
   const std::string e = io::extension_of(path);
-  return is_step(e) || is_iges(e);
+  return detail::is_step_extension(e) || detail::is_iges_extension(e);
 }
 
-SectionsFile read_sections(const std::string& path) {
+SectionsFile read_sections(const std::string& path, const SectionReadOptions& options) {
   const std::string ext = io::extension_of(path);
-  if (!is_step(ext) && !is_iges(ext))
+  if (!is_exchange_input(path))
     fail(ErrorCode::kUsage, path, "not a STEP (.step, .stp) or IGES (.igs, .iges) file name");
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)
@@ -86,74 +190,65 @@ SectionsFile read_sections(const std::string& path) {
          std::string("cannot open input: ") + std::strerror(errno));
   if (st.st_size == 0) fail(ErrorCode::kInputSyntax, path, "empty file: not a STEP or IGES file");
 
-  detail::quiet_occt();
   SectionsFile out;
-  out.name = path;
-  try {
-    TopoDS_Shape shape;
-    if (is_step(ext)) {
-      STEPControl_Controller::Init();
-      STEPControl_Reader reader;
-      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
-        fail(ErrorCode::kInputSyntax, path, "not a STEP file OpenCASCADE can read");
-      reader.TransferRoots();
-      shape = reader.OneShape();
-    } else {
-      IGESControl_Controller::Init();
-      IGESControl_Reader reader;
-      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone || reader.Model().IsNull() ||
-          reader.Model()->NbEntities() == 0)
-        fail(ErrorCode::kInputSyntax, path, "not an IGES file OpenCASCADE can read");
-      reader.TransferRoots();
-      shape = reader.OneShape();
+  if (!options.isolate) {
+    out = detail::read_sections_here(path);
+  } else {
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0)
+      fail(ErrorCode::kInternal, path, std::string("cannot make a pipe: ") + std::strerror(errno));
+    std::fflush(nullptr);  // nothing buffered is written twice
+    const pid_t pid = ::fork();
+    if (pid < 0) {
+      ::close(fds[0]);
+      ::close(fds[1]);
+      fail(ErrorCode::kInternal, path, std::string("cannot fork: ") + std::strerror(errno));
     }
-    if (shape.IsNull())
-      fail(ErrorCode::kInputData, path, "the file holds no geometry OpenCASCADE can transfer");
-    Bnd_Box box;
-    BRepBndLib::Add(shape, box);
-    if (box.IsVoid())
-      fail(ErrorCode::kInputData, path, "no section curves: the file holds no edges or curves");
-    double x0, y0, z0, x1, y1, z1;
-    box.Get(x0, y0, z0, x1, y1, z1);
-    const double diagonal = Point(x1 - x0, y1 - y0, z1 - z0).norm();
-    const double deflection = std::max(kSectionDeflection * diagonal, 1e-12);
-    const double same = 1e-9 * diagonal + 1e-15;
-
-    auto add_row = [&](std::vector<Point>& pts) {
-      if (pts.size() >= 3 && (pts.front() - pts.back()).norm() <= 1e-7 * diagonal)
-        pts.pop_back();  // a closed curve: the first point is not repeated (.rows convention)
-      if (pts.empty()) return;
-      out.rows.add_row(pts);
-    };
-    // Wires outside faces: one row each, edges in wire order.
-    for (TopExp_Explorer w(shape, TopAbs_WIRE, TopAbs_FACE); w.More(); w.Next()) {
-      std::vector<Point> pts;
-      for (BRepTools_WireExplorer e(TopoDS::Wire(w.Current())); e.More(); e.Next())
-        sample_edge(e.Current(), deflection, same, pts);
-      add_row(pts);
+    if (pid == 0) {
+      ::close(fds[0]);
+      child(path, fds[1]);
     }
-    // Free edges (in no wire): one row each.
-    for (TopExp_Explorer e(shape, TopAbs_EDGE, TopAbs_WIRE); e.More(); e.Next()) {
-      std::vector<Point> pts;
-      sample_edge(TopoDS::Edge(e.Current()), deflection, same, pts);
-      add_row(pts);
+    ::close(fds[1]);
+    std::string answer;
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(options.timeout_seconds);
+    bool timed_out = false;
+    char buf[1 << 16];
+    while (true) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                            deadline - std::chrono::steady_clock::now())
+                            .count();
+      if (left <= 0) {
+        timed_out = true;
+        break;
+      }
+      pollfd p{fds[0], POLLIN, 0};
+      const int r = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0) continue;
+      const ssize_t n = ::read(fds[0], buf, sizeof buf);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      answer.append(buf, static_cast<std::size_t>(n));
     }
-    if (out.rows.empty()) {
-      long faces = 0;
-      for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) ++faces;
-      fail(ErrorCode::kInputData, path,
-           "no section curves: the file holds " +
-               (faces ? std::to_string(faces) + " face(s) and no free curves or wires"
-                      : std::string("no curves")));
+    ::close(fds[0]);
+    if (timed_out) ::kill(pid, SIGKILL);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
-    for (std::size_t j = 0; j < out.rows.size(); ++j)
-      for (const Point& p : out.rows[j])
-        if (!p.allFinite())
-          fail(ErrorCode::kInputData, path, "curve gives a non-finite point", static_cast<long>(j));
-  } catch (const Standard_Failure& f) {
-    fail(ErrorCode::kInputSyntax, path,
-         "OpenCASCADE failed reading the file (" + detail::describe(f) + ")");
+    if (timed_out)
+      fail(ErrorCode::kInputUnreadable, path,
+           "cannot read the file: OpenCASCADE did not finish reading it in " +
+               std::to_string(static_cast<int>(options.timeout_seconds)) + " s");
+    const bool clean = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (!clean || !decode(answer, path, out))
+      fail(ErrorCode::kInputUnreadable, path,
+           "cannot read the file: " +
+               (clean ? std::string("the reader gave no whole answer") : describe_status(status)));
   }
+  out.name = path;
+  out.first_line.clear();
+  detail::check_sections(out, path);
   return out;
 }
 

@@ -75,6 +75,22 @@ void validate(const Scene& sc, const RenderOptions& o) {
     bad("stripes", "stripes must be > 0 and <= 1000", o.stripes);
   if (!(o.curvature_scale >= 0) || !std::isfinite(o.curvature_scale))
     bad("curvature_scale", "curvature scale must be a finite number >= 0", o.curvature_scale);
+  // A surface of no size (one point) or beyond double's squares leaves no camera to place:
+  // refuse it rather than search for a view for minutes and draw noise.
+  {
+    Point lo = Point::Constant(INFINITY), hi = Point::Constant(-INFINITY);
+    for (const Point& p : sc.surface->control) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const double size = sc.surface->control.empty() ? 0.0 : (hi - lo).norm();
+    if (!(size >= 1e-150 && size <= 1e150))
+      throw Error(ErrorCode::kInputData,
+                  size == 0 ? std::string("the surface is a single point: nothing to draw")
+                            : "the surface's size " + std::to_string(size) +
+                                  " is out of the range sfit draws (1e-150 ... 1e150)",
+                  Place{}, {size});
+  }
   const std::size_t n = sc.rows ? sc.rows->total_points() : 0;
   if ((o.points || o.mode == Mode::kDeviation) && !sc.rows)
     bad(o.points ? "points" : "mode", "this picture needs the data points", 0);

@@ -28,14 +28,26 @@ struct SectionsFile {
 inline constexpr double kSectionDeflection = 1e-5;
 inline constexpr int kMinSectionSamples = 50;
 
+/// How read_sections() runs OpenCASCADE.
+struct SectionReadOptions {
+  /// In a child process (fork): a crash, a signal or a hang of the CAD kernel on a hostile
+  /// file becomes Error(kInputUnreadable) "cannot read the file: ...", never the caller's end.
+  bool isolate = true;
+  double timeout_seconds = 120;  ///< the child is killed after this long (isolate only)
+};
+
 /// Reads every curve of a STEP or IGES file that is not the boundary of a face (edges of
 /// wires and free edges, in file order) and samples each densely into one row (see
 /// kSectionDeflection). A closed curve (end = start) is a closed contour: its
 /// last sample, equal to the first, is dropped, as in the .rows format; fit it with
 /// --closed u.
-/// Throws Error: kInputUnreadable (missing, a directory, unreadable), kInputSyntax (not a
-/// STEP/IGES file OCCT can parse), kInputData (no section curves, e.g. only faces; a
-/// degenerate curve).
-SectionsFile read_sections(const std::string& path);
+/// Lengths are read in the file's own unit (SectionsFile::units; STEP: its length unit,
+/// IGES: the global section's unit flag), never converted to millimetres.
+/// A file whose top-level curve entities do not all translate is refused (kInputData, the
+/// entity named); every coordinate is checked finite and within |x| <= 1e150.
+/// Throws Error: kInputUnreadable (missing, a directory, unreadable, the CAD kernel crashed
+/// or hung on it), kInputSyntax (not a STEP/IGES file OCCT can parse), kInputData (no section
+/// curves, e.g. only faces; an untranslatable curve; a point out of range).
+SectionsFile read_sections(const std::string& path, const SectionReadOptions& options = {});
 
 }  // namespace sfit::exchange
