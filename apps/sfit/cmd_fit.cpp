@@ -16,6 +16,7 @@
 #include "sfit/io/formats.h"
 #include "sfit/io/surface_json.h"
 #include "sfit/surface_fit.h"
+#include "surface_json_value.h"
 #ifdef SFIT_HAVE_RENDER
 #include "picture_options.h"
 #endif

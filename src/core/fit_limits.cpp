@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "sfit/basis.h"
+#include "basis.h"
 #include "sfit/error.h"
 
 namespace sfit {

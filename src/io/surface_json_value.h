@@ -25,4 +25,9 @@ nlohmann::json report_to_json(const FitReport& report);
 /// periodic direction whose wrap copies differ, non-finite numbers).
 Surface surface_from_json(const nlohmann::json& j, const std::string& name);
 
+/// Parses a JSON file with the readers' errors: kInputUnreadable (missing, unreadable, a
+/// folder), kInputSyntax (malformed JSON, with nlohmann's line and column), kInputData (a
+/// number out of the range of a double, e.g. 1e999).
+nlohmann::json read_json_file(const std::string& path);
+
 }  // namespace sfit::io

@@ -28,11 +28,6 @@ Surface surface_from_json_text(std::string_view text, const std::string& name);
 /// sfit's uniform knots).
 Surface read_surface_json(const std::string& path);
 
-/// Parses a JSON file with the readers' errors: kInputUnreadable (missing, unreadable, a
-/// folder), kInputSyntax (malformed JSON, with nlohmann's line and column), kInputData (a
-/// number out of the range of a double, e.g. 1e999).
-nlohmann::json read_json_file(const std::string& path);
-
 /// The text write_surface_json() writes (for standard output).
 std::string surface_json_text(const Surface& surface, const FitReport* report = nullptr);
 
