@@ -37,6 +37,8 @@ struct FitArgs {
   int mesh_density = 0;
   bool fields = false;
   std::string units = "mm";
+  bool obj_freeform = false;
+  std::string normals = "auto";
 #ifdef SFIT_HAVE_RENDER
   std::vector<std::string> pngs;  // --png pictures
   PictureArgs picture;
@@ -113,6 +115,7 @@ int run_fit(const FitArgs& a) {
   }
   if (!a.report.empty()) io::check_writable(a.report);
   check_units(a.units);
+  check_mesh_options(a.mesh_density, a.normals);
 #ifdef SFIT_HAVE_RENDER
   check_picture_outputs(a.pngs, a.picture, "--png");
 #endif
@@ -177,9 +180,11 @@ int run_fit(const FitArgs& a) {
         {r.worst_deviation.x(), r.worst_deviation.y(), r.worst_deviation.z()});
   OutputContext ctx{fit.surface, &fit,           &in.rows, in.name,
                     a.mesh,      a.mesh_density, a.fields, a.units};
+  ctx.obj_freeform = a.obj_freeform;
+  ctx.normals = a.normals;
   for (const auto& out : a.outputs) {
-    write_output(out, ctx);
-    say("wrote " + out);
+    const std::string what = write_output(out, ctx);
+    say("wrote " + out + (what.empty() ? "" : " (" + what + ")"));
   }
   if (!a.report.empty()) {
     io::write_report_json(a.report, r);
@@ -223,10 +228,19 @@ void add_fit_command(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest"}));
   c->add_option("--threads", args->threads, "threads (0: all cores); results do not depend on it")
       ->check(CLI::Range(0, 4096));
-  c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");
+  // Mesh outputs (.obj .stl .ply .vtk .vts); defaults and checks are the library's
+  // (sfit/exchange/tessellate.h), see docs/meshes.md.
+  c->add_flag("--mesh", args->mesh, "(the default) write .obj as a triangle mesh");
+  c->add_flag("--obj-freeform", args->obj_freeform,
+              "write .obj as the exact free-form B-spline instead (few viewers show it)");
   c->add_option("--mesh-density", args->mesh_density,
-                "tessellation samples per direction (default: from the tolerance)");
-  c->add_flag("--fields", args->fields, "add deviation and curvature point data (.vtk/.vts)");
+                "mesh samples per direction, 2 ... 100000 (default 0: from the chordal error "
+                "T/4, at most 100000 triangles)");
+  c->add_option("--normals", args->normals,
+                "mesh normals: auto (outward for closed surfaces, up for height fields; "
+                "default), flip (the opposite), uv (as the data runs, S_u x S_v)");
+  c->add_flag("--fields", args->fields,
+              "add curvature (raw and clipped) and deviation point data (.vtk/.vts)");
   c->add_option("--units", args->units,
                 "length unit the STEP/IGES file states (mm, cm, m, km, um, in, ft, mi); "
                 "coordinates are written unchanged")

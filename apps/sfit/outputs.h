@@ -23,6 +23,9 @@ struct OutputContext {
   int mesh_density = 0;      ///< --mesh-density: samples per direction (0: automatic)
   bool fields = false;       ///< --fields: deviation/curvature point data (VTK)
   std::string units = "mm";  ///< --units: length unit stated in STEP/IGES
+
+  bool obj_freeform = false;     ///< --obj-freeform: .obj as the exact free-form surface
+  std::string normals = "auto";  ///< --normals: auto, flip, uv (meshes)
 };
 
 using io::extension_of;
@@ -32,7 +35,10 @@ std::vector<std::string> output_extensions();
 void check_output_extension(const std::string& path);
 /// Throws Error(kUsage, option "--units") unless STEP/IGES can state `units`.
 void check_units(const std::string& units);
-/// Writes `path` in the format of its extension (atomically).
-void write_output(const std::string& path, const OutputContext& context);
+/// Throws Error(kUsage) for a --mesh-density or --normals no mesh writer accepts.
+void check_mesh_options(int mesh_density, const std::string& normals);
+/// Writes `path` in the format of its extension (atomically); returns what was written in a
+/// few words ("triangle mesh, 64 x 248 samples, ...") for the "wrote" line.
+std::string write_output(const std::string& path, const OutputContext& context);
 
 }  // namespace sfit::cli
