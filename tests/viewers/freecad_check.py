@@ -12,6 +12,22 @@ results = []
 for item in job:
     r = {"file": item["file"]}
     try:
+        if item.get("mesh"):  # FreeCAD's Mesh module: counts, solidity, the facets' winding
+            import Mesh
+            m = Mesh.Mesh(item["file"])
+            r["points"], r["facets"] = m.CountPoints, m.CountFacets
+            r["solid"], r["nonmanifold"] = bool(m.isSolid()), bool(m.hasNonManifolds())
+            pts = [(p.x, p.y, p.z) for p in m.Points]
+            c = [sum(p[k] for p in pts) / len(pts) for k in range(3)]
+            size = max(max(abs(p[k] - c[k]) for p in pts) for k in range(3))
+            vol = 0.0
+            for f in m.Facets:  # six times the signed volume, centred and scaled
+                a, b, d = ([(q[k] - c[k]) / size for k in range(3)] for q in f.Points)
+                vol += (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+                        a[2] * (b[0] * d[1] - b[1] * d[0]))
+            r["signed_volume"] = vol / 6
+            results.append(r)
+            continue
         shape = Part.read(item["file"])
         r["valid"] = bool(shape.isValid())
         r["faces"] = len(shape.Faces)

@@ -7,7 +7,8 @@ face on one non-rational B-spline surface; the degrees, pole counts and periodic
 the surface JSON (a periodic direction holds its distinct poles: the JSON's count minus the
 degree); and S(u, v) at a grid of parameters equal to sfit's own evaluation (surface_probe)
 within 1e-9 of the surface's size. A file stated in metres (--units m) reads as the same
-points times 1000 (FreeCAD works in millimetres).
+points times 1000 (FreeCAD works in millimetres). The torus as .stl/.obj/.ply in FreeCAD's
+Mesh module: the counts, a closed manifold solid, its facets wound outward.
 Skips (exit 77) with a message when freecadcmd is not installed.
 """
 import json
@@ -56,6 +57,17 @@ def main():
         job.append({"file": out, "parameters": params})
         expect.append((blade.name, ext + " (--units m)", surface, full, points, size, 1000.0))
 
+    # Meshes in FreeCAD's Mesh module: the torus closed (a solid), wound outward.
+    torus = next(c for c in cases if c.name == "torus")
+    n = 30
+    meshes = []
+    for ext in ("stl", "obj", "ply"):
+        out = ws.path(f"torus_mesh.{ext}")
+        vc.run([ws.cli, "fit", torus.rows_path, *torus.closed_flag, "--mesh-density", str(n),
+                "-o", out])
+        job.append({"file": out, "mesh": True})
+        meshes.append(ext)
+
     job_path, result_path = ws.path("job.json"), ws.path("result.json")
     with open(job_path, "w") as f:
         json.dump(job, f)
@@ -70,6 +82,15 @@ def main():
     with open(result_path) as f:
         results = json.load(f)
 
+    for ext, got in zip(meshes, results[len(expect):]):
+        what = f"torus mesh .{ext} in FreeCAD"
+        if not C.check("error" not in got, f"{what}: read ({got.get('error')})"):
+            continue
+        C.check(got["points"] == n * n and got["facets"] == 2 * n * n,
+                f"{what}: {n * n} points, {2 * n * n} facets ({got['points']}, {got['facets']})")
+        C.check(got["solid"] and not got["nonmanifold"], f"{what}: a closed solid, manifold")
+        C.check(got["signed_volume"] > 0, f"{what}: wound outward (signed volume "
+                                          f"{got['signed_volume']:.4g})")
     for (name, ext, surface, full, points, size, scale), got in zip(expect, results):
         what = f"{name}.{ext}"
         if not C.check("error" not in got, f"{what}: FreeCAD read it ({got.get('error')})"):
