@@ -56,8 +56,8 @@ void add_convert_command(CLI::App& app, Runner& run) {
   c->add_flag("--obj-freeform", args->obj_freeform,
               "write .obj as the exact free-form B-spline instead (few viewers show it)");
   c->add_option("--mesh-density", args->mesh_density,
-                "mesh samples per direction, 2 ... 100000 (default 0: from the chordal error "
-                "2.5e-4 of the diagonal, at most 100000 triangles)");
+                "mesh samples per direction (default 0: from the chordal error, within a "
+                "triangle budget; see docs/meshes.md)");
   c->add_option("--normals", args->normals,
                 "mesh normals: auto (outward / up; default), flip, uv (S_u x S_v)");
   c->add_flag("--fields", args->fields, "add curvature point data, raw and clipped (.vtk/.vts)");

@@ -234,8 +234,8 @@ void add_fit_command(CLI::App& app, Runner& run) {
   c->add_flag("--obj-freeform", args->obj_freeform,
               "write .obj as the exact free-form B-spline instead (few viewers show it)");
   c->add_option("--mesh-density", args->mesh_density,
-                "mesh samples per direction, 2 ... 100000 (default 0: from the chordal error "
-                "T/4, at most 100000 triangles)");
+                "mesh samples per direction (default 0: from the chordal error, within a "
+                "triangle budget; see docs/meshes.md)");
   c->add_option("--normals", args->normals,
                 "mesh normals: auto (outward for closed surfaces, up for height fields; "
                 "default), flip (the opposite), uv (as the data runs, S_u x S_v)");
