@@ -90,21 +90,43 @@ std::vector<Point> grid_deviation(const Surface& s, const Mesh& m, const DataPoi
                                   const Rows& rows) {
   std::vector<Point> out(m.vertices.size(), Point::Zero());
   if (d.points.empty()) return out;
-  const std::size_t nr = rows.size();
-  std::vector<std::size_t> first(nr);
-  std::vector<double> rv(nr);
-  for (std::size_t j = 0, k = 0; j < nr; k += rows[j].size(), ++j) {
-    first[j] = k;
-    rv[j] = d.v[k];
-  }
   const double pu = m.periodic_u ? s.u_end() : 0.0;
   const double pv = m.periodic_v ? s.v_end() : 0.0;
+  auto wrap = [](double t, double period) {
+    return period > 0 ? t - period * std::floor(t / period) : t;
+  };
+  // Each row's points in increasing u (wrapped into the period), the rows in increasing v,
+  // so the interpolation holds whatever order the data came in (a rotated closed row).
+  const std::size_t nr = rows.size();
+  std::vector<double> ru, rv;
+  std::vector<Point> rdev;
+  std::vector<std::size_t> first(nr), order(nr);
+  for (std::size_t j = 0, k = 0; j < nr; k += rows[j].size(), ++j) {
+    std::vector<std::size_t> idx(rows[j].size());
+    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = k + i;
+    std::stable_sort(idx.begin(), idx.end(), [&](std::size_t x, std::size_t y) {
+      return wrap(d.u[x], pu) < wrap(d.u[y], pu);
+    });
+    first[j] = ru.size();
+    for (std::size_t i : idx) {
+      ru.push_back(wrap(d.u[i], pu));
+      rdev.push_back(d.deviation[i]);
+    }
+    rv.push_back(wrap(d.v[k], pv));
+    order[j] = j;
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return rv[x] < rv[y]; });
+  std::vector<double> v_sorted(nr);
+  for (std::size_t j = 0; j < nr; ++j) v_sorted[j] = rv[order[j]];
   std::vector<Point> row_value(nr);
   for (int a = 0; a < m.samples_u; ++a) {
-    for (std::size_t j = 0; j < nr; ++j)
-      row_value[j] = interpolate(d.u, d.deviation, first[j], rows[j].size(), m.u[a], pu);
+    for (std::size_t j = 0; j < nr; ++j) {
+      const std::size_t r = order[j];
+      row_value[j] = interpolate(ru, rdev, first[r], rows[r].size(), m.u[a], pu);
+    }
     for (int b = 0; b < m.samples_v; ++b)
-      out[m.index(a, b)] = interpolate(rv, row_value, 0, nr, m.v[b], pv);
+      out[m.index(a, b)] = interpolate(v_sorted, row_value, 0, nr, m.v[b], pv);
   }
   return out;
 }

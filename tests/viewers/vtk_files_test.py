@@ -212,7 +212,7 @@ def check_case(ws, case, extreme):
             C.check(agree >= 0.95, f"{name}.{tag}: triangles wound with the normals "
                                     f"({agree:.4f} agree)")
 
-    # Triangle meshes: PLY and OBJ hold the grid's points exactly (double / shortest text).
+    # Triangle meshes (VTK reads their points as float32: compared at float precision).
     for ext in [] if extreme else ["ply", "obj", "stl"]:
         path = ws.path(f"{name}.{ext}")
         mesh = read(path)
