@@ -58,9 +58,9 @@ Density choose_density(const Surface& s, double chord_in, int max_samples, doubl
   const double chord = chord_in / f.size;  // in the scaled coordinates
   const int su = spans(s.degree_u, s.count_u, s.periodic_u);
   const int sv = spans(s.degree_v, s.count_v, s.periodic_v);
-  // Maxima of the second derivatives, 8 samples per knot span and at the span ends.
+  // Maxima of the second derivatives, 4 samples per knot span and at the span ends.
   double muu = 0, muv = 0, mvv = 0;
-  const int nu = 8 * su + 1, nv = 8 * sv + 1;
+  const int nu = 4 * su + 1, nv = 4 * sv + 1;
   for (int b = 0; b < nv; ++b) {
     const double v = s.v_end() * b / (nv - 1);
     for (int a = 0; a < nu; ++a) {

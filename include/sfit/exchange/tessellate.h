@@ -39,7 +39,7 @@ struct Mesh {
 /// METHOD: the distance from S to the triangle over a parameter cell of size h_u x h_v is at
 /// most (h_u^2 M_uu + 2 h_u h_v M_uv + h_v^2 M_vv) / 8 (linear interpolation error along the
 /// longest edge, de Boor, "A Practical Guide to Splines", ch. 2), with M the maxima of
-/// |S_uu|, |S_uv|, |S_vv| sampled 8 times per knot span. h_u and h_v are chosen so that
+/// |S_uu|, |S_uv|, |S_vv| sampled 4 times per knot span. h_u and h_v are chosen so that
 /// h_u^2 M_uu = h_v^2 M_vv and the bound equals `chord`. At least 4 samples per knot span
 /// (so the shape of every span shows); at most `max_samples` per direction.
 struct Density {
