@@ -128,24 +128,30 @@ void check_stl_fits(const std::string& path, const Mesh& m) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  const double size = (hi / 2 - lo / 2).cwiseAbs().maxCoeff() * 2;  // largest extent per axis
-  double moved = 0;
-  for (const Point& p : m.vertices)
-    for (int k = 0; k < 3; ++k) {
-      const float f = static_cast<float>(p[k]);
-      moved = std::max(moved, std::isfinite(f) ? std::abs(static_cast<double>(f) - p[k])
-                                               : std::numeric_limits<double>::infinity());
-    }
-  if (moved <= kStlRounding * size) return;
-  char what[160];
-  std::snprintf(what, sizeof what, "by up to %.3g, %.3g%% of the surface's extent %.3g", moved,
-                size > 0 ? 100 * moved / size : 100.0, size);
+  const double largest = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  const double size = (hi - lo).norm();
+  constexpr double kMax = std::numeric_limits<float>::max();
+  const double least = std::max(1e-30, largest * 1e-6);  // float32 keeps ~7 digits
+  double moved = 0;  // the largest change of a coordinate rounded to float32
+  if (largest <= kMax)
+    for (const Point& p : m.vertices)
+      for (int k = 0; k < 3; ++k)
+        moved = std::max(moved, std::abs(static_cast<double>(static_cast<float>(p[k])) - p[k]));
+  char why[200];
+  if (largest > kMax)
+    std::snprintf(why, sizeof why, "coordinates reach %.3g, beyond float32's %.3g", largest, kMax);
+  else if (size < least)
+    std::snprintf(why, sizeof why, "the surface spans %.3g, which float32 does not resolve", size);
+  else if (moved > kStlRounding * size)
+    std::snprintf(why, sizeof why,
+                  "rounding to it moves vertices by up to %.3g, %.2g%% of the surface's size %.3g",
+                  moved, 100 * moved / size, size);
+  else
+    return;
   throw Error(ErrorCode::kOutputWrite,
-              std::string("STL holds float32 coordinates, which would move the vertices ") +
-                  (std::isfinite(moved) ? what : "out of range (beyond 3.4e38)") +
-                  ": write .ply, .obj or .vtk (double precision) instead, or move the data "
-                  "near the origin",
-              Place{.file = path}, {moved, size});
+              std::string("cannot write output: STL stores float32 and ") + why +
+                  " (write .ply, .vtk or .step instead)",
+              Place{.file = path}, {largest, size});
 }
 
 void write_stl(const std::string& path, const Mesh& m) {

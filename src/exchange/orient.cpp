@@ -110,7 +110,6 @@ void orient(Mesh& m, NormalRule rule) {
 }
 
 Mesh make_mesh(const Surface& s, int samples, double tolerance, NormalRule rule) {
-  check_mesh_density(samples);
   Mesh m;
   if (samples != 0) {
     m = tessellate(s, samples, samples);

@@ -32,15 +32,6 @@ std::vector<double> sample_parameters(double end, int n, bool periodic) {
 
 }  // namespace
 
-void check_mesh_density(int n) {
-  if (n != 0 && (n < kMinMeshDensity || n > kMaxMeshDensity))
-    bad_density("mesh density must be " + std::to_string(kMinMeshDensity) + " ... " +
-                    std::to_string(kMaxMeshDensity) +
-                    " samples per direction (0: chosen from the chordal error), got " +
-                    std::to_string(n),
-                n);
-}
-
 double default_chord(const Surface& surface, double tolerance) {
   if (tolerance > 0) return tolerance / 4;
   const detail::SurfaceFrame f(surface);

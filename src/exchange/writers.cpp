@@ -27,6 +27,15 @@ std::string describe(const Mesh& m, bool quads) {
 
 }  // namespace
 
+void check_mesh_density(int n) {
+  if (n != 0 && (n < kMinMeshDensity || n > kMaxMeshDensity))
+    throw Error(ErrorCode::kUsage,
+                "must be 0 (automatic) or " + std::to_string(kMinMeshDensity) + " ... " +
+                    std::to_string(kMaxMeshDensity) + " samples per direction, got " +
+                    std::to_string(n),
+                Place{.option = "--mesh-density"}, {static_cast<double>(n)});
+}
+
 std::vector<std::string> writer_extensions() {
   return {"step", "stp", "igs", "iges", "obj", "stl", "ply", "vtk", "vts"};
 }

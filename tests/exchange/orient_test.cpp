@@ -8,6 +8,7 @@
 #include "exchange_cases.h"
 #include "sfit/error.h"
 #include "sfit/exchange/tessellate.h"
+#include "sfit/exchange/writers.h"
 #include "test_support.h"
 
 namespace sfit::exchange {

@@ -24,12 +24,13 @@ void write_obj_mesh(const std::string& path, const Mesh& mesh);
 /// (float32, little endian). Refused (check_stl_fits) where float32 cannot hold the vertices.
 void write_stl(const std::string& path, const Mesh& mesh);
 
-/// Largest rounding of a vertex to float32, relative to the mesh's largest extent, that STL
-/// accepts (far offsets like 1e7 with an extent of 1, or sizes beyond float32's range, fail).
+/// Largest rounding of a vertex to float32, relative to the mesh's size (bounding-box
+/// diagonal), that STL accepts: a far offset (1e7 with a size of 1) fails.
 inline constexpr double kStlRounding = 1e-4;
-/// Throws Error(kOutputWrite, file `path`) naming the rounding and the double-precision
-/// formats to use instead when float32 would move a vertex by more than kStlRounding of the
-/// extent (or out of float32's range).
+/// Throws Error(kOutputWrite, file `path`) when float32 cannot hold the mesh: coordinates
+/// beyond 3.4e38, a size float32 does not resolve (below 1e-6 of the largest coordinate or
+/// 1e-30), or rounding that moves a vertex by more than kStlRounding of the size; the message
+/// names the double-precision formats to use instead.
 void check_stl_fits(const std::string& path, const Mesh& mesh);
 
 /// Binary little-endian PLY: vertex x y z (double) nx ny nz (float), face vertex_indices

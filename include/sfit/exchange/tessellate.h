@@ -61,14 +61,6 @@ double default_chord(const Surface& surface, double tolerance);
 /// above is kept where it fits, the mesh is coarsened evenly where it does not.
 inline constexpr double kDefaultTriangleBudget = 100000;
 
-/// Samples per direction that --mesh-density (the same count both ways) accepts: at least 3,
-/// which every direction takes (a periodic one needs 3), at most 7000 (7000^2 is within
-/// tessellate()'s 5e7 vertices), so a density that passes here never fails later.
-inline constexpr int kMinMeshDensity = 3, kMaxMeshDensity = 7000;
-/// Throws Error(kUsage, option "--mesh-density") unless 0 (automatic) or within the limits
-/// above: callers check before reading any input.
-void check_mesh_density(int samples);
-
 /// Samples the surface on a samples_u x samples_v grid, uniform in each parameter, and
 /// triangulates it (two triangles per cell). samples 2 ... 100000 in an open direction,
 /// 3 ... 100000 in a periodic one, at most 5e7 in all; throws Error(kUsage, option

@@ -29,6 +29,13 @@ void check_write_options(const WriteOptions& options);
 /// vtk, vts.
 std::vector<std::string> writer_extensions();
 
+/// The densities --mesh-density accepts whatever the surface: 0 (automatic) or
+/// kMinMeshDensity ... kMaxMeshDensity samples per direction (the mesh stays below 5e7
+/// vertices). Throws Error(kUsage, option "--mesh-density") otherwise, before any work.
+inline constexpr int kMinMeshDensity = 3;
+inline constexpr int kMaxMeshDensity = 7000;
+void check_mesh_density(int samples);
+
 /// Writes `surface` to `path` in the format of its extension, atomically, and returns what
 /// was written in a few words for the user ("triangle mesh, 64 x 248 samples, 31250
 /// triangles, chordal error <= 0.002, normals outward (closed in u)"; "free-form B-spline").
