@@ -3,14 +3,13 @@
 #include <Eigen/Geometry>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <ostream>
 
-#include "mesh_fields.h"
 #include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
-#include "surface_frame.h"
 
 namespace sfit::exchange {
 

@@ -13,12 +13,20 @@
 #include "sfit/exchange/mesh_writers.h"
 #include "sfit/io/atomic_file.h"
 #include "surface_frame.h"
+#if __has_include("sfit/version.h")
+#include "sfit/version.h"
+#endif
 
 namespace sfit::exchange {
 
 namespace {
 
+// The banner of mesh_writers.cpp, with the generated version where the build has it.
+#if __has_include("sfit/version.h")
+const char* kBanner = "sfit " SFIT_VERSION_STRING " B-spline surface (Vergeest 1989, SFIT01)";
+#else
 const char* kBanner = "sfit 0.1.0 B-spline surface (Vergeest 1989, SFIT01)";
+#endif
 
 template <typename T>
 void put(std::string& out, T value) {  // little endian, as every supported host is
