@@ -19,6 +19,8 @@ struct ConvertArgs {
   int mesh_density = 0;
   bool fields = false;
   std::string units = "mm";
+  bool obj_freeform = false;
+  std::string normals = "auto";
   bool quiet = false;
 };
 
@@ -29,11 +31,14 @@ int run_convert(const ConvertArgs& a) {
   OutputPlan plan;
   plan.add_input(a.input);
   plan.add(a.outputs, "-o", OutputTarget::kSurface);
-  check_output_options(a.units, a.mesh_density);
+  check_output_options(a.units, a.mesh_density, a.normals);
   const Surface s = io::read_surface_json(a.input);
   OutputContext ctx{s, nullptr, nullptr, a.input, a.mesh, a.mesh_density, a.fields, a.units};
-  plan.write_all(
-      [&](const PlannedOutput& out, std::string* text) { write_output(out.path, ctx, text); });
+  ctx.obj_freeform = a.obj_freeform;
+  ctx.normals = a.normals;
+  plan.write_all([&](const PlannedOutput& out, std::string* text) {
+    return write_output(out.path, ctx, text);
+  });
   return 0;
 }
 
@@ -44,9 +49,14 @@ void add_convert_command(CLI::App& app, Runner& run) {
   CLI::App* c = app.add_subcommand("convert", "re-export a saved surface (.json) to other formats");
   c->add_option("SURFACE", args->input, "surface file written by 'sfit fit' (.json)")->required();
   c->add_option("-o,--output", args->outputs, "output file(s); the extension picks the format");
-  c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh");
+  // Mesh outputs; defaults and checks are the library's (docs/meshes.md).
+  c->add_flag("--mesh", args->mesh, "(the default) write .obj as a triangle mesh");
+  c->add_flag("--obj-freeform", args->obj_freeform,
+              "write .obj as the exact free-form B-spline instead (few viewers show it)");
   c->add_option("--mesh-density", args->mesh_density, mesh_density_help());
-  c->add_flag("--fields", args->fields, "add curvature point data (.vtk/.vts)");
+  c->add_option("--normals", args->normals,
+                "mesh normals: auto (outward / up; default), flip, uv (S_u x S_v)");
+  c->add_flag("--fields", args->fields, "add curvature point data, raw and clipped (.vtk/.vts)");
   c->add_option("--units", args->units,
                 "length unit the STEP/IGES file states (mm, cm, m, km, um, in, ft, mi)")
       ->default_val("mm");

@@ -33,6 +33,8 @@ struct FitArgs : FitOptionArgs {  // --degree, --tol, --closed, ... (cli_common.
   int mesh_density = 0;
   bool fields = false;
   std::string units;  // "": a STEP/IGES input's unit, else mm
+  bool obj_freeform = false;
+  std::string normals = "auto";
 #ifdef SFIT_HAVE_RENDER
   std::vector<std::string> pngs;  // --png pictures
   PictureArgs picture;
@@ -67,7 +69,7 @@ int run_fit(const FitArgs& a) {
   plan.add_input(a.input);
   plan.add(a.outputs, "-o", OutputTarget::kSurface);
   if (!a.report.empty()) plan.add(a.report, "--report", OutputTarget::kReport);
-  check_output_options(a.units.empty() ? "mm" : a.units, a.mesh_density);
+  check_output_options(a.units.empty() ? "mm" : a.units, a.mesh_density, a.normals);
 #ifdef SFIT_HAVE_RENDER
   plan.add(a.pngs, "--png", OutputTarget::kPicture);
   check_picture_outputs(a.pngs, a.picture, "--png");
@@ -133,6 +135,8 @@ int run_fit(const FitArgs& a) {
         Place{.file = in.name},
         {r.worst_deviation.x(), r.worst_deviation.y(), r.worst_deviation.z()});
   OutputContext ctx{fit.surface, &fit, &in.rows, in.name, a.mesh, a.mesh_density, a.fields, units};
+  ctx.obj_freeform = a.obj_freeform;
+  ctx.normals = a.normals;
   bool pictures_done = false;
   plan.write_all([&](const PlannedOutput& out, std::string* text) {
     switch (out.target) {
@@ -143,16 +147,17 @@ int run_fit(const FitArgs& a) {
           *text = io::report_to_json(r).dump(2) + "\n";
         else
           io::write_report_json(out.path, r);
-        return;
+        return std::string();
       case OutputTarget::kPicture:
 #ifdef SFIT_HAVE_RENDER
         if (!pictures_done) write_fit_pictures(a.pngs, a.picture, fit, in.rows, in.name);
 #endif
         pictures_done = true;
-        return;
+        return std::string();
       case OutputTarget::kRows:
-        return;
+        return std::string();
     }
+    return std::string();
   });
   return 0;
 }
@@ -197,9 +202,17 @@ void add_fit_command(CLI::App& app, Runner& run) {
   c->add_option("--threads", args->threads,
                 "threads, 0 (all cores) ... " + std::to_string(kMaxThreads) +
                     "; results do not depend on it");
-  c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");
+  // Mesh outputs (.obj .stl .ply .vtk .vts); defaults and checks are the library's
+  // (sfit/exchange/tessellate.h), see docs/meshes.md.
+  c->add_flag("--mesh", args->mesh, "(the default) write .obj as a triangle mesh");
+  c->add_flag("--obj-freeform", args->obj_freeform,
+              "write .obj as the exact free-form B-spline instead (few viewers show it)");
   c->add_option("--mesh-density", args->mesh_density, mesh_density_help());
-  c->add_flag("--fields", args->fields, "add deviation and curvature point data (.vtk/.vts)");
+  c->add_option("--normals", args->normals,
+                "mesh normals: auto (outward for closed surfaces, up for height fields; "
+                "default), flip (the opposite), uv (as the data runs, S_u x S_v)");
+  c->add_flag("--fields", args->fields,
+              "add curvature (raw and clipped) and deviation point data (.vtk/.vts)");
   c->add_option("--units", args->units,
                 "length unit the STEP/IGES outputs state (mm, cm, m, km, um, in, ft, mi; "
                 "default: a STEP/IGES input's own unit, else mm); coordinates are written "

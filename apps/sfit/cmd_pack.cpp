@@ -24,8 +24,10 @@ int run_pack(const PackArgs& a) {
   const Input in = read_input(a.input);
   say(in.name + ": " + std::to_string(in.rows.size()) + " rows, " +
       std::to_string(in.rows.total_points()) + " points");
-  plan.write_all(
-      [&](const PlannedOutput& out, std::string*) { io::write_rows_binary(out.path, in.rows); });
+  plan.write_all([&](const PlannedOutput& out, std::string*) {
+    io::write_rows_binary(out.path, in.rows);
+    return std::string();
+  });
   return 0;
 }
 

@@ -16,10 +16,10 @@
 #include "picture_options.h"
 #include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
-#include "surface_json_value.h"
 #include "sfit/render/deviations.h"
 #include "sfit/render/row_picture.h"
 #include "sfit/render/surface_picture.h"
+#include "surface_json_value.h"
 
 namespace sfit::cli {
 namespace {
@@ -208,8 +208,10 @@ int run_render(const RenderArgs& a) {
   }
   say(fmt::format("drew {}x{}, {} mode, {:.2f} s", r.image.width, r.image.height,
                   render::to_string(mode), r.seconds));
-  plan.write_all(
-      [&](const PlannedOutput& out, std::string*) { render::write_png(out.path, r.image); });
+  plan.write_all([&](const PlannedOutput& out, std::string*) {
+    render::write_png(out.path, r.image);
+    return std::string();
+  });
   return 0;
 }
 
@@ -272,8 +274,10 @@ int run_render_rows(const RowArgs& a) {
   say(fmt::format("row {}: {} points, {} control points (degree {}), max |d|/(T/2) {} at point {}",
                   a.row, row.size(), fit.curve.count(), fit.curve.degree, g(pic.worst_ratio),
                   pic.worst_index));
-  plan.write_all(
-      [&](const PlannedOutput& out, std::string*) { render::write_png(out.path, pic.image); });
+  plan.write_all([&](const PlannedOutput& out, std::string*) {
+    render::write_png(out.path, pic.image);
+    return std::string();
+  });
   return 0;
 }
 

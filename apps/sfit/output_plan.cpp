@@ -81,9 +81,10 @@ void OutputPlan::add(const std::string& path, const std::string& option, OutputT
 
 void OutputPlan::write_all(const Writer& write) const {
   std::string text;
+  std::vector<std::string> what;
   {
     io::OutputBatch batch;
-    for (const auto& o : outputs_) write(o, o.to_stdout ? &text : nullptr);
+    for (const auto& o : outputs_) what.push_back(write(o, o.to_stdout ? &text : nullptr));
     if (!text.empty()) {
       const bool ok = std::fwrite(text.data(), 1, text.size(), stdout) == text.size() &&
                       std::fflush(stdout) == 0;
@@ -94,8 +95,10 @@ void OutputPlan::write_all(const Writer& write) const {
     }
     batch.commit();
   }
-  for (const auto& o : outputs_)
-    say(o.to_stdout ? "wrote the JSON to standard output" : "wrote " + o.path);
+  for (std::size_t i = 0; i < outputs_.size(); ++i)
+    say((outputs_[i].to_stdout ? "wrote the JSON to standard output"
+                               : "wrote " + outputs_[i].path) +
+        (what[i].empty() ? "" : " (" + what[i] + ")"));
 }
 
 }  // namespace sfit::cli

@@ -46,9 +46,10 @@ class OutputPlan {
   /// Writes every output through `write(output, text)`: a file output is written to its path
   /// (the writers' atomic writes are held back by an io::OutputBatch); a standard-output one
   /// fills `*text` instead. Standard output is written, then every file renamed onto its
-  /// target, only when every writer succeeded; then "wrote PATH" is said for each.
+  /// target, only when every writer succeeded; then "wrote PATH" is said for each, followed by
+  /// what its writer returned (a few words on what was written; empty: nothing more).
   /// On any error nothing is left: every existing file as it was, no new file.
-  using Writer = std::function<void(const PlannedOutput&, std::string* text)>;
+  using Writer = std::function<std::string(const PlannedOutput&, std::string* text)>;
   void write_all(const Writer& write) const;
 
  private:

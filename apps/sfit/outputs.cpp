@@ -8,30 +8,34 @@
 #include "sfit/io/surface_json.h"
 #ifdef SFIT_HAVE_EXCHANGE
 #include "sfit/exchange/cad_writers.h"
+#include "sfit/exchange/tessellate.h"
 #include "sfit/exchange/writers.h"
 #endif
 
 namespace sfit::cli {
 namespace {
 
-using Writer = std::function<void(const std::string&, const OutputContext&)>;
+using Writer = std::function<std::string(const std::string&, const OutputContext&)>;
 
 const std::map<std::string, Writer>& writers() {
   static const std::map<std::string, Writer> w = [] {
     std::map<std::string, Writer> m;
     m["json"] = [](const std::string& p, const OutputContext& c) {
       io::write_surface_json(p, c.surface, c.fit ? &c.fit->report : nullptr);
+      return std::string();
     };
 #ifdef SFIT_HAVE_EXCHANGE
     for (const auto& ext : exchange::writer_extensions()) {
       m[ext] = [](const std::string& p, const OutputContext& c) {
         exchange::WriteOptions o;
         o.mesh = c.mesh;
+        o.obj_freeform = c.obj_freeform;
+        o.normals = exchange::parse_normal_rule(c.normals);
         o.mesh_density = c.mesh_density;
         o.fields = c.fields;
         o.units = c.units;
         o.tolerance = c.fit ? c.fit->report.tolerance.minCoeff() : 0.0;
-        exchange::write_surface(p, c.surface, o, c.fit, c.rows);
+        return exchange::write_surface(p, c.surface, o, c.fit, c.rows);
       };
     }
 #endif
@@ -60,13 +64,15 @@ void check_output_extension(const std::string& path, const std::string& option,
               Place{.option = option});
 }
 
-void check_output_options(const std::string& units, int mesh_density) {
+void check_output_options(const std::string& units, int mesh_density, const std::string& normals) {
 #ifdef SFIT_HAVE_EXCHANGE
   exchange::check_units(units);
   exchange::check_mesh_density(mesh_density);
+  exchange::parse_normal_rule(normals);
 #else
   (void)units;
   (void)mesh_density;
+  (void)normals;
 #endif
 }
 
@@ -74,19 +80,19 @@ std::string mesh_density_help() {
 #ifdef SFIT_HAVE_EXCHANGE
   return "tessellation samples per direction, " + std::to_string(exchange::kMinMeshDensity) +
          " ... " + std::to_string(exchange::kMaxMeshDensity) +
-         " (default 0: from the tolerance; see docs/cli.md)";
+         " (default 0: from the chordal error, within a triangle budget; see docs/meshes.md)";
 #else
   return "tessellation samples per direction (this build has no mesh formats)";
 #endif
 }
 
-void write_output(const std::string& path, const OutputContext& context, std::string* text) {
+std::string write_output(const std::string& path, const OutputContext& context, std::string* text) {
   if (text) {
     *text = io::surface_json_text(context.surface, context.fit ? &context.fit->report : nullptr);
-    return;
+    return {};
   }
   check_output_extension(path);
-  writers().at(extension_of(path))(path, context);
+  return writers().at(extension_of(path))(path, context);
 }
 
 }  // namespace sfit::cli

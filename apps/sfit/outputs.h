@@ -24,6 +24,9 @@ struct OutputContext {
   int mesh_density = 0;      ///< --mesh-density: samples per direction (0: automatic)
   bool fields = false;       ///< --fields: deviation/curvature point data (VTK)
   std::string units = "mm";  ///< --units: length unit stated in STEP/IGES
+
+  bool obj_freeform = false;     ///< --obj-freeform: .obj as the exact free-form surface
+  std::string normals = "auto";  ///< --normals: auto, flip, uv (meshes)
 };
 
 using io::extension_of;
@@ -32,14 +35,16 @@ using io::extension_of;
 /// built: both named).
 void check_output_extension(const std::string& path, const std::string& option = "-o",
                             io::FormatKind kind = io::FormatKind::kSurface);
-/// Checks the options that shape the surface outputs (--units, --mesh-density) before any
-/// work: throws Error(kUsage) naming the option.
-void check_output_options(const std::string& units, int mesh_density);
+/// Checks the options that shape the surface outputs (--units, --mesh-density, --normals)
+/// before any work: throws Error(kUsage) naming the option.
+void check_output_options(const std::string& units, int mesh_density,
+                          const std::string& normals = "auto");
 /// Help text of --mesh-density with the range the mesh part accepts.
 std::string mesh_density_help();
 /// Writes `path` in the format of its extension (atomically); `text` set: the surface JSON
-/// into *text instead (for standard output).
-void write_output(const std::string& path, const OutputContext& context,
-                  std::string* text = nullptr);
+/// into *text instead (for standard output). Returns what was written in a few words
+/// ("triangle mesh, 64 x 248 samples, ..."; empty for JSON) for the "wrote" line.
+std::string write_output(const std::string& path, const OutputContext& context,
+                         std::string* text = nullptr);
 
 }  // namespace sfit::cli

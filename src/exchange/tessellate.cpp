@@ -7,6 +7,7 @@
 #include <string>
 
 #include "sfit/error.h"
+#include "surface_frame.h"
 
 namespace sfit::exchange {
 
@@ -25,30 +26,37 @@ std::vector<double> sample_parameters(double end, int n, bool periodic) {
   return t;
 }
 
+[[noreturn]] void bad_density(const std::string& what, int n) {
+  throw Error(ErrorCode::kUsage, what, Place{.option = "--mesh-density"}, {static_cast<double>(n)});
+}
+
 }  // namespace
 
 double default_chord(const Surface& surface, double tolerance) {
   if (tolerance > 0) return tolerance / 4;
+  const detail::SurfaceFrame f(surface);
   Point lo = Point::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const Point& p : surface.control) {
+  for (const Point& p : f.scaled.control) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  const double diagonal = surface.control.empty() ? 0.0 : (hi - lo).norm();
+  const double diagonal = f.scaled.control.empty() ? 0.0 : (hi - lo).norm() * f.size;
   return diagonal > 0 ? 2.5e-4 * diagonal : 1.0;
 }
 
-Density choose_density(const Surface& s, double chord, int max_samples) {
+Density choose_density(const Surface& s, double chord_in, int max_samples, double max_triangles) {
+  const detail::SurfaceFrame f(s);
+  const double chord = chord_in / f.size;  // in the scaled coordinates
   const int su = spans(s.degree_u, s.count_u, s.periodic_u);
   const int sv = spans(s.degree_v, s.count_v, s.periodic_v);
-  // Maxima of the second derivatives, 8 samples per knot span and at the span ends.
+  // Maxima of the second derivatives, 4 samples per knot span and at the span ends.
   double muu = 0, muv = 0, mvv = 0;
-  const int nu = 8 * su + 1, nv = 8 * sv + 1;
+  const int nu = 4 * su + 1, nv = 4 * sv + 1;
   for (int b = 0; b < nv; ++b) {
     const double v = s.v_end() * b / (nv - 1);
     for (int a = 0; a < nu; ++a) {
       Point d[6];
-      s.derivatives(s.u_end() * a / (nu - 1), v, d);
+      f.derivatives(s.u_end() * a / (nu - 1), v, d);
       muu = std::max(muu, d[3].norm());
       muv = std::max(muv, d[4].norm());
       mvv = std::max(mvv, d[5].norm());
@@ -70,19 +78,26 @@ Density choose_density(const Surface& s, double chord, int max_samples) {
   } else {  // bilinear in both: only the twist term
     hu = hv = muv > 0 ? std::sqrt(4 * chord / muv) : std::max(s.u_end(), s.v_end());
   }
-  auto count = [&](double end, double h, int span_count, bool periodic) {
-    const double cells = std::ceil(end / h - 1e-9);
-    const double minimum = 4.0 * span_count;
-    double n = std::max(cells, minimum) + (periodic ? 0 : 1);
-    n = std::min(n, static_cast<double>(max_samples));
-    return static_cast<int>(n);
+  auto cells = [&](double end, double h, int span_count, double per_span) {
+    return std::max(std::ceil(end / h - 1e-9), per_span * span_count);
+  };
+  double cu = cells(s.u_end(), hu, su, 4), cv = cells(s.v_end(), hv, sv, 4);
+  if (max_triangles > 0 && 2 * cu * cv > max_triangles) {
+    // Coarsen both directions by one factor; at least one cell per knot span.
+    const double k = std::sqrt(2 * cu * cv / max_triangles);
+    cu = std::max(std::floor(cu / k), 1.0 * su);
+    cv = std::max(std::floor(cv / k), 1.0 * sv);
+  }
+  auto count = [&](double c, bool periodic) {
+    const double n = c + (periodic ? 0 : 1);
+    return static_cast<int>(std::min(n, static_cast<double>(max_samples)));
   };
   Density d;
-  d.samples_u = count(s.u_end(), hu, su, s.periodic_u);
-  d.samples_v = count(s.v_end(), hv, sv, s.periodic_v);
-  const double cu = s.u_end() / (s.periodic_u ? d.samples_u : d.samples_u - 1);
-  const double cv = s.v_end() / (s.periodic_v ? d.samples_v : d.samples_v - 1);
-  d.bound = (cu * cu * muu + 2 * cu * cv * muv + cv * cv * mvv) / 8;
+  d.samples_u = count(cu, s.periodic_u);
+  d.samples_v = count(cv, s.periodic_v);
+  const double hu2 = s.u_end() / (s.periodic_u ? d.samples_u : d.samples_u - 1);
+  const double hv2 = s.v_end() / (s.periodic_v ? d.samples_v : d.samples_v - 1);
+  d.bound = (hu2 * hu2 * muu + 2 * hu2 * hv2 * muv + hv2 * hv2 * mvv) / 8 * f.size;
   return d;
 }
 
@@ -90,10 +105,9 @@ Mesh tessellate(const Surface& s, int samples_u, int samples_v) {
   auto check = [](int n, bool periodic, const char* dir) {
     const int least = periodic ? 3 : 2;
     if (n < least || n > 100000)
-      throw Error(ErrorCode::kUsage,
-                  std::string("mesh density along ") + dir + " must be " + std::to_string(least) +
+      bad_density(std::string("mesh density along ") + dir + " must be " + std::to_string(least) +
                       " ... 100000 samples, got " + std::to_string(n),
-                  Place{.option = "--mesh-density"}, {static_cast<double>(n)});
+                  n);
   };
   check(samples_u, s.periodic_u, "u");
   check(samples_v, s.periodic_v, "v");
@@ -102,6 +116,7 @@ Mesh tessellate(const Surface& s, int samples_u, int samples_v) {
                 "mesh of " + std::to_string(samples_u) + " x " + std::to_string(samples_v) +
                     " samples is too large (at most 5e7 vertices)",
                 Place{.option = "--mesh-density"});
+  const detail::SurfaceFrame f(s);
   Mesh m;
   m.samples_u = samples_u;
   m.samples_v = samples_v;
@@ -112,21 +127,14 @@ Mesh tessellate(const Surface& s, int samples_u, int samples_v) {
   const std::size_t n = static_cast<std::size_t>(samples_u) * samples_v;
   m.vertices.resize(n);
   m.normals.resize(n);
-  std::vector<bool> analytic(n, false);
-  // A normal counts as analytic when |S_u x S_v| is not negligible against |S_u| |S_v| and the
-  // size of the parameter cell.
+  std::vector<char> analytic(n, 0);
   for (int b = 0; b < samples_v; ++b)
     for (int a = 0; a < samples_u; ++a) {
-      Point d[6];
-      s.derivatives(m.u[a], m.v[b], d);
       const std::size_t k = m.index(a, b);
-      m.vertices[k] = d[0];
-      const Point c = d[1].cross(d[2]);
-      const double scale = d[1].norm() * d[2].norm();
-      if (scale > 0 && c.norm() > 1e-8 * scale) {
-        m.normals[k] = c.normalized();
-        analytic[k] = true;
-      }
+      m.vertices[k] = s.evaluate(m.u[a], m.v[b]);
+      Point d[6];
+      f.derivatives(m.u[a], m.v[b], d);
+      analytic[k] = detail::SurfaceFrame::unit_normal(d, m.normals[k]);
     }
   m.triangles.reserve(static_cast<std::size_t>(m.quads_u()) * m.quads_v() * 2);
   for (int b = 0; b < m.quads_v(); ++b)
@@ -136,36 +144,45 @@ Mesh tessellate(const Surface& s, int samples_u, int samples_v) {
       m.triangles.push_back({p, q, r});
       m.triangles.push_back({p, r, t});
     }
-  // Poles: area-weighted mean of the triangle normals around the vertex.
-  if (std::find(analytic.begin(), analytic.end(), false) != analytic.end()) {
-    std::vector<Point> sum(n, Point::Zero());
-    for (const auto& tri : m.triangles) {
-      const Point f =
-          (m.vertices[tri[1]] - m.vertices[tri[0]]).cross(m.vertices[tri[2]] - m.vertices[tri[0]]);
-      for (auto k : tri) sum[k] += f;
+  if (std::find(analytic.begin(), analytic.end(), 0) == analytic.end()) return m;
+  // Degenerate points (poles): the normal beside each, then one mean normal for a whole
+  // collapsed row or column; the triangle normals around it (scaled) as the last resort.
+  std::vector<char> found(n, 0);
+  for (int b = 0; b < samples_v; ++b)
+    for (int a = 0; a < samples_u; ++a) {
+      const std::size_t k = m.index(a, b);
+      if (!analytic[k]) found[k] = f.normal_near(m.u[a], m.v[b], m.normals[k]);
     }
-    for (std::size_t k = 0; k < n; ++k)
-      if (!analytic[k]) m.normals[k] = sum[k].norm() > 0 ? sum[k].normalized() : Point(0, 0, 1);
+  auto pool = [&](int count, auto&& index_of) {  // one normal for a fully degenerate line
+    Point sum = Point::Zero();
+    for (int i = 0; i < count; ++i) {
+      const std::size_t k = index_of(i);
+      if (analytic[k]) return;
+      if (found[k]) sum += m.normals[k];
+    }
+    if (!(sum.norm() > 1e-8)) return;
+    for (int i = 0; i < count; ++i) {
+      m.normals[index_of(i)] = sum.normalized();
+      found[index_of(i)] = 1;
+    }
+  };
+  for (int b = 0; b < samples_v; ++b) pool(samples_u, [&](int a) { return m.index(a, b); });
+  for (int a = 0; a < samples_u; ++a) pool(samples_v, [&](int b) { return m.index(a, b); });
+  std::vector<Point> sum(n, Point::Zero());
+  for (const auto& tri : m.triangles) {
+    const Point p0 = (m.vertices[tri[0]] - f.centre) / f.size;
+    const Point e = ((m.vertices[tri[1]] - f.centre) / f.size - p0)
+                        .cross((m.vertices[tri[2]] - f.centre) / f.size - p0);
+    for (auto k : tri) sum[k] += e;
   }
+  for (std::size_t k = 0; k < n; ++k)
+    if (!analytic[k] && !found[k])
+      m.normals[k] = sum[k].norm() > 0 ? Point(sum[k].normalized()) : Point(0, 0, 1);
   return m;
 }
 
 Curvature curvature(const Surface& s, double u, double v) {
-  Point d[6];
-  s.derivatives(u, v, d);
-  const Point c = d[1].cross(d[2]);
-  Curvature k;
-  if (!(c.norm() > 1e-12 * d[1].norm() * d[2].norm()) || c.norm() == 0) {
-    k.mean = k.gaussian = std::numeric_limits<double>::quiet_NaN();
-    return k;
-  }
-  const Point nrm = c.normalized();
-  const double E = d[1].dot(d[1]), F = d[1].dot(d[2]), G = d[2].dot(d[2]);
-  const double L = d[3].dot(nrm), M = d[4].dot(nrm), N = d[5].dot(nrm);
-  const double det = E * G - F * F;
-  k.gaussian = (L * N - M * M) / det;
-  k.mean = (E * N - 2 * F * M + G * L) / (2 * det);
-  return k;
+  return detail::SurfaceFrame(s).curvature(u, v);
 }
 
 }  // namespace sfit::exchange

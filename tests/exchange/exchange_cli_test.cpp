@@ -35,15 +35,19 @@ TEST(ExchangeCli, OneFitWritesEveryFormat) {
   // No temporary files left behind.
   for (const auto& f : fs::directory_iterator(dir))
     EXPECT_EQ(f.path().string().find(".sfit-"), std::string::npos) << f.path();
-  // .obj without --mesh is the exact free-form surface; with --mesh a mesh with normals.
-  EXPECT_NE(test::read_file(dir + "/wing.obj").find("cstype bspline"), std::string::npos);
-  const auto m = run_cli("fit " + q(test::example("d150_wing.rows")) +
-                         " --closed u --mesh --mesh-density 12 -o " + q(dir + "/mesh.obj"));
-  ASSERT_EQ(m.exit_code, 0) << m.err;
-  const std::string obj = test::read_file(dir + "/mesh.obj");
+  // .obj is a triangle mesh with normals (and stderr says so); --obj-freeform gives the
+  // exact free-form surface.
+  EXPECT_NE(r.err.find("wrote " + dir + "/wing.obj (triangle mesh, "), std::string::npos) << r.err;
+  const std::string obj = test::read_file(dir + "/wing.obj");
   EXPECT_NE(obj.find("\nvn "), std::string::npos);
   EXPECT_NE(obj.find("\nf 1//1 "), std::string::npos);
   EXPECT_EQ(obj.find("cstype"), std::string::npos);
+  const auto m = run_cli("fit " + q(test::example("d150_wing.rows")) +
+                         " --closed u --obj-freeform -o " + q(dir + "/free.obj"));
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  EXPECT_NE(test::read_file(dir + "/free.obj").find("cstype bspline"), std::string::npos);
+  EXPECT_NE(m.err.find("(free-form B-spline surface, 14 x 4 control points"), std::string::npos)
+      << m.err;
 }
 
 TEST(ExchangeCli, ConvertReexportsAndJsonReloadsBitForBit) {

@@ -8,9 +8,11 @@
 #include <gtest/gtest.h>
 #include <assimp/Importer.hpp>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 
 #include "exchange_cases.h"
+#include "sfit/error.h"
 #include "test_support.h"
 
 namespace sfit::exchange {
@@ -209,7 +211,11 @@ TEST(VtkWriters, LegacyFileHoldsGridDataPointsAndFields) {
   const auto r = t.find("SCALARS deviation_ratio double 1\nLOOKUP_TABLE default\n");
   const std::size_t r0 =
       r + std::strlen("SCALARS deviation_ratio double 1\nLOOKUP_TABLE default\n");
-  EXPECT_TRUE(std::isnan(big_endian_at<double>(t, r0)));  // grid points: not defined
+  // Grid points: interpolated from the data points, so within T as well.
+  for (std::size_t i = 0; i < 80; ++i) {
+    const double g = big_endian_at<double>(t, r0 + i * 8);
+    EXPECT_TRUE(g >= 0 && g <= 1) << i << ": " << g;
+  }
   double worst = 0;
   for (std::size_t i = 0; i < nd; ++i)
     worst = std::max(worst, big_endian_at<double>(t, r0 + (80 + i) * 8));
@@ -230,6 +236,41 @@ TEST(VtkWriters, StructuredGridClosesPeriodicDirections) {
   EXPECT_NE(t.find("Name=\"mean_curvature\""), std::string::npos);
   EXPECT_NE(t.find("Name=\"gaussian_curvature\""), std::string::npos);
   EXPECT_EQ(t.find("nan"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sfit::exchange
+
+namespace sfit::exchange {
+namespace {
+
+// STL holds float32: refused, naming the file and the double-precision formats, where the
+// vertices would move (a far offset, a size beyond float32); nothing is written then.
+TEST(MeshWriters, StlRefusesCoordinatesFloat32CannotHold) {
+  const auto* c = test::must_pass_cases()[4];  // torus, size about 5
+  const std::string dir = test::temp_dir();
+  write_stl(dir + "/ok.stl", tessellate(c->fit.surface, 12, 8));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/ok.stl"));
+  for (const auto& [size, offset] : std::vector<std::pair<double, double>>{
+           {1.0, 1e7}, {1e-140, 0.0}, {1e140, 0.0}, {1e39, 0.0}}) {
+    SCOPED_TRACE(size);
+    Surface s = c->fit.surface;
+    for (Point& p : s.control) p = p * size + Point::Constant(offset);
+    const Mesh m = tessellate(s, 12, 8);
+    try {
+      write_stl(dir + "/x.stl", m);
+      FAIL() << "written";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::kOutputWrite);
+      EXPECT_EQ(e.place().file, dir + "/x.stl");
+      EXPECT_NE(e.message().find("STL stores float32"), std::string::npos);
+      EXPECT_NE(e.message().find(".ply"), std::string::npos) << e.message();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.stl"));
+    // The double-precision formats take it.
+    write_ply(dir + "/x.ply", m);
+    EXPECT_TRUE(std::filesystem::exists(dir + "/x.ply"));
+  }
 }
 
 }  // namespace

@@ -183,3 +183,56 @@ TEST(Tessellate, RefusesBadDensities) {
 
 }  // namespace
 }  // namespace sfit::exchange
+
+namespace sfit::exchange {
+namespace {
+
+// The writers' default mesh: the chordal target where it fits, coarsened evenly to the
+// triangle budget where it does not, and honest about the bound it then holds.
+TEST(Tessellate, DefaultMeshKeepsTheTriangleBudget) {
+  for (const auto& c : test::fitted_cases()) {
+    SCOPED_TRACE(c.name);
+    const Surface& s = c.fit.surface;
+    const double T = c.fit.report.tolerance.minCoeff();
+    const Mesh m = make_mesh(s, 0, T, NormalRule::kAuto);
+    EXPECT_LE(static_cast<double>(m.triangles.size()), kDefaultTriangleBudget);
+    const Density target = choose_density(s, default_chord(s, T));
+    const double wanted =
+        2.0 * (target.samples_u - !s.periodic_u) * (target.samples_v - !s.periodic_v);
+    if (wanted <= kDefaultTriangleBudget) {
+      EXPECT_EQ(m.samples_u, target.samples_u);  // fits: the chordal target is kept
+      EXPECT_EQ(m.samples_v, target.samples_v);
+      EXPECT_LE(m.chordal_bound, T / 4);
+    } else {
+      EXPECT_GT(m.chordal_bound, T / 4);  // coarser, and says so
+      EXPECT_GE(static_cast<double>(m.triangles.size()), 0.9 * kDefaultTriangleBudget);
+    }
+    std::printf(
+        "[ measure  ] %-26s %3d x %3d control points: default mesh %4d x %4d, %6zu "
+        "triangles (target %4d x %4d), chordal bound %.3g T\n",
+        c.name.c_str(), s.count_u, s.count_v, m.samples_u, m.samples_v, m.triangles.size(),
+        target.samples_u, target.samples_v, m.chordal_bound / T);
+  }
+  // A 16 x 62 control net of a wavy hull at a tight chord: the budget, not 1.2 million.
+  Surface hull;
+  hull.count_u = 16;
+  hull.count_v = 62;
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 62; ++j)
+      hull.control.emplace_back(j, 3 * std::sin(0.2 * i) + 0.1 * std::sin(j), i * 0.5);
+  const Density full = choose_density(hull, 1e-4);
+  const Density capped = choose_density(hull, 1e-4, 4096, kDefaultTriangleBudget);
+  EXPECT_GT(2.0 * (full.samples_u - 1) * (full.samples_v - 1), kDefaultTriangleBudget);
+  EXPECT_LE(2.0 * (capped.samples_u - 1) * (capped.samples_v - 1), kDefaultTriangleBudget);
+  EXPECT_GT(capped.bound, full.bound);
+  std::printf(
+      "[ measure  ] 16 x 62 hull at chord 1e-4: %d x %d samples unbounded, %d x %d within "
+      "the budget (bound %.3g)\n",
+      full.samples_u, full.samples_v, capped.samples_u, capped.samples_v, capped.bound);
+  // Coarsened evenly: the aspect of the cells stays.
+  EXPECT_NEAR(static_cast<double>(capped.samples_u - 1) / (capped.samples_v - 1),
+              static_cast<double>(full.samples_u - 1) / (full.samples_v - 1), 0.1);
+}
+
+}  // namespace
+}  // namespace sfit::exchange
