@@ -12,6 +12,7 @@
 #include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
 #include "sfit/io/surface_json.h"
+#include "sfit/option_names.h"
 #include "sfit/surface_fit.h"
 #ifdef SFIT_HAVE_RENDER
 #include "picture_options.h"
@@ -85,22 +86,16 @@ int run_fit(const FitArgs& a) {
   check_degree(a.degree, "--degree");
   if (a.degree_u) check_degree(*a.degree_u, "--degree-u");
   if (a.degree_v) check_degree(*a.degree_v, "--degree-v");
-  if (a.closed == "u" || a.closed == "uv" || a.closed == "vu") o.closed_u = true;
-  if (a.closed == "v" || a.closed == "uv" || a.closed == "vu") o.closed_v = true;
-  if (!a.closed.empty() && a.closed != "none" && !o.closed_u && !o.closed_v)
+  if (!parse_closed(a.closed, o.closed_u, o.closed_v))
     throw Error(ErrorCode::kUsage, "'" + a.closed + "' is not one of u, v, uv, none",
                 Place{.option = "--closed"});
-  o.search = a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast;
+  parse_count_search(a.search, o.search);                  // checked by CLI11
   parse_parametrization(a.parameters, o.parametrization);  // checked by CLI11
   o.threads = a.threads;
   if (a.tol && a.tol_rel)
     throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both",
                 Place{.option = "--tol-rel"});
-  if (a.tol_rel && !(*a.tol_rel >= 0 && *a.tol_rel <= 1))
-    throw Error(
-        ErrorCode::kUsage,
-        fmt::format("must be a fraction 0 ... 1 of the bounding-box diagonal, got {}", *a.tol_rel),
-        Place{.option = "--tol-rel"}, {*a.tol_rel});
+  if (a.tol_rel) check_tolerance_fraction(*a.tol_rel, "--tol-rel");
   Point tol_abs = Point::Constant(-1);
   if (a.tol) tol_abs = parse_tolerance(*a.tol, "--tol");
   if (a.outputs.empty() && a.report.empty() && !wants_pictures(a))
@@ -119,8 +114,8 @@ int run_fit(const FitArgs& a) {
 
   Input in = read_input(a.input);
   const BoundingBox box = bounding_box(in.rows);
-  const double fraction = a.tol_rel.value_or(1e-3);
-  o.tolerance = tol_abs.x() >= 0 ? tol_abs : Point::Constant(fraction * box.diagonal());
+  const double fraction = a.tol_rel.value_or(kDefaultToleranceFraction);
+  o.tolerance = tol_abs.x() >= 0 ? tol_abs : relative_tolerance(in.rows, fraction);
 
   std::size_t lo = SIZE_MAX, hi = 0;
   for (std::size_t j = 0; j < in.rows.size(); ++j) {

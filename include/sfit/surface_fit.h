@@ -75,7 +75,11 @@ struct FitResult {
 /// naming the row/point or option and the offending values.
 void validate(const Rows& rows, const FitOptions& options);
 
-/// T = fraction x the bounding-box diagonal on every axis (the CLI default is 1e-3).
+/// The default tolerance of every front end: this fraction of the bounding-box diagonal.
+inline constexpr double kDefaultToleranceFraction = 1e-3;
+
+/// T = fraction x the bounding-box diagonal on every axis (the default fraction is
+/// kDefaultToleranceFraction).
 Point relative_tolerance(const Rows& rows, double fraction);
 
 /// The whole method: curve stage on each row (minimal count within T/2), re-representation on
