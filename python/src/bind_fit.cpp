@@ -137,7 +137,11 @@ void bind_fit(py::module_& m) {
 
   m.def(
       "fit",
-      [](py::handle rows, const py::kwargs& kwargs) {
+      [](py::handle rows, py::object tol, py::kwargs kwargs) {
+        if (!tol.is_none()) {
+          if (kwargs.contains("tol")) usage_error("tol", "given twice");
+          kwargs["tol"] = tol;
+        }
         const Settings settings = settings_from(kwargs);
         auto r = std::make_shared<Rows>(rows_from(rows));
         const FitOptions o = resolve(*r, settings);
@@ -148,7 +152,8 @@ void bind_fit(py::module_& m) {
         }
         return make_fit(std::move(result), std::move(r));
       },
-      py::arg("rows"), (std::string(kFitDoc) + options_doc() + kFitDocEnd).c_str());
+      py::arg("rows"), py::arg("tol") = py::none(),
+      (std::string(kFitDoc) + options_doc() + kFitDocEnd).c_str());
 
   py::class_<PyIncrementalFit>(m, "IncrementalFit",
                                R"(A fit that follows edits of its rows (sfit::IncrementalFit).

@@ -100,3 +100,23 @@ def test_fit_save_json_holds_the_report(tmp_path, ship_rows):
     j = json.loads((tmp_path / "hull.json").read_text())
     assert_same_surface(fit.surface, j)
     assert j["report"]["row_counts"] == fit.report["row_counts"]
+
+
+def test_tolerance_by_position_equals_by_keyword(ship_rows):
+    a = sfit.fit(ship_rows, 0.05)
+    b = sfit.fit(ship_rows, tol=0.05)
+    assert np.array_equal(a.surface.control_points, b.surface.control_points)
+
+
+def test_the_stub_names_every_public_name():
+    import ast
+    import pathlib
+
+    stub = pathlib.Path(sfit.__file__).with_suffix(".pyi")
+    tree = ast.parse(stub.read_text())
+    names = {n.name for n in tree.body if isinstance(n, (ast.ClassDef, ast.FunctionDef))}
+    names |= {t.id for n in tree.body if isinstance(n, ast.AnnAssign) for t in [n.target]}
+    assert set(sfit.__all__) <= names
+    # Every keyword option of sfit.fit (the binding's table) is in its docstring.
+    for key in ("tol", "tol_rel", "degree_u", "closed", "search", "parameters", "threads"):
+        assert f"    {key}: " in sfit.fit.__doc__
