@@ -4,6 +4,7 @@
 # CMakeLists.txt before the libraries are defined.
 set(SFIT_PYTHON OFF)
 if(NOT SFIT_BUILD_PYTHON)
+  message(STATUS "sfit: Python module off (SFIT_BUILD_PYTHON=OFF)")
   return()
 endif()
 if(SFIT_SANITIZE OR SFIT_FUZZ)
