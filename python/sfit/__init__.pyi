@@ -71,6 +71,7 @@ def fit(
     parameters: str = "paper",
     row_count_hints: Sequence[int] | None = None,
     column_count_hints: Sequence[int] | None = None,
+    progress: Callable[[str, int, int], None] | None = None,
     **options: Any,
 ) -> Fit:
     """Fits rows of points ((N_j, 3) arrays, or an (M, N, 3) array) within tolerance T."""

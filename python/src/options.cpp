@@ -1,5 +1,6 @@
 #include "options.h"
 
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -119,6 +120,22 @@ const std::vector<Field>& fields() {
       {"column_count_hints", "counts to start each column's search from (column_counts)",
        [](Settings& s, py::handle v, const char* n) {
          s.options.column_count_hints = integers(v, n);
+       }},
+      {"progress", "callable(stage, done, total) called between the fit's stages (with the GIL)",
+       [](Settings& s, py::handle v, const char* n) {
+         if (!PyCallable_Check(v.ptr()))
+           usage_error(n, "expected a callable, got " + std::string(py::str(py::repr(v))));
+         // Shared, never copied as a Python object while the GIL is released; released
+         // with the GIL held.
+         std::shared_ptr<py::object> f(new py::object(py::reinterpret_borrow<py::object>(v)),
+                                       [](py::object* o) {
+                                         py::gil_scoped_acquire gil;
+                                         delete o;
+                                       });
+         s.options.progress = [f](std::string_view stage, std::size_t done, std::size_t total) {
+           py::gil_scoped_acquire gil;
+           (*f)(std::string(stage), done, total);
+         };
        }},
   };
   return table;
