@@ -23,7 +23,13 @@ DoubleArray numeric(py::handle obj, const std::string& what, long row) {
     data_error(what + " must hold numbers (an integer or float dtype), got dtype " +
                    std::string(py::str(a.dtype())),
                row);
-  return DoubleArray::ensure(a);  // copies unless already C-ordered float64
+  // Copies unless already C-ordered float64; any integer or float dtype casts (uint64 and
+  // long double too, which numpy's safe casting would refuse).
+  DoubleArray d = DoubleArray::ensure(a);
+  if (!d)
+    data_error(what + ": cannot convert dtype " + std::string(py::str(a.dtype())) + " to float64",
+               row);
+  return d;
 }
 
 }  // namespace
@@ -79,7 +85,7 @@ Point per_axis_from(py::handle v, const std::string& option) {
       (a.size() != 1 && a.size() != 3))
     usage_error(option, "expected one number or three (Tx, Ty, Tz), got " +
                             std::string(py::str(py::repr(v))));
-  DoubleArray d = DoubleArray::ensure(a);
+  DoubleArray d = numeric(a, option, -1);
   return d.size() == 1 ? Point::Constant(d.data()[0])
                        : Point(d.data()[0], d.data()[1], d.data()[2]);
 }

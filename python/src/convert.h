@@ -17,7 +17,7 @@
 namespace sfit::python {
 
 namespace py = pybind11;
-using DoubleArray = py::array_t<double, py::array::c_style>;
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 /// `rows`: a sequence of (N_j, 3) arrays (rows may differ in length) or an (M, N, 3) array.
 Rows rows_from(py::handle rows);

@@ -180,7 +180,10 @@ def test_fortran_order_and_strided_arrays_are_converted():
     a = sfit.fit(as_float32, tol=0.01)
     b = sfit.fit(as_float32.astype(np.float64), tol=0.01)
     assert np.array_equal(a.surface.control_points, b.surface.control_points)
-    ints = np.rint(grid * 100).astype(np.int32)
-    assert sfit.fit(ints, tol=1).report["within_tolerance"]
+    ints = np.rint(grid * 100 + 1000).astype(np.int32)
+    reference_ints = sfit.fit(ints.astype(np.float64), tol=1).surface.control_points
+    for dtype in (np.int32, np.int64, np.uint16, np.uint64, np.float16, np.longdouble):
+        converted = sfit.fit(ints.astype(dtype), tol=1)
+        assert np.array_equal(converted.surface.control_points, reference_ints), dtype
     as_lists = grid.tolist()
     assert np.array_equal(sfit.fit(as_lists, tol=0.01).surface.control_points, reference)
