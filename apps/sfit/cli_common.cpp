@@ -13,6 +13,7 @@
 #include "sfit/io/formats.h"
 #include "sfit/io/rows_binary.h"
 #include "sfit/io/rows_reader.h"
+#include "sfit/option_names.h"
 #ifdef SFIT_HAVE_EXCHANGE
 #include "sfit/exchange/readers.h"
 #endif
@@ -75,15 +76,13 @@ CheckedFitOptions check_fit_options(const FitOptionArgs& a) {
   if (a.degree_v) check_degree(*a.degree_v, "--degree-v");
   o.degree_u = a.degree_u.value_or(a.degree);
   o.degree_v = a.degree_v.value_or(a.degree);
-  if (a.closed == "u" || a.closed == "uv" || a.closed == "vu") o.closed_u = true;
-  if (a.closed == "v" || a.closed == "uv" || a.closed == "vu") o.closed_v = true;
-  if (!a.closed.empty() && a.closed != "none" && !o.closed_u && !o.closed_v)
+  if (!parse_closed(a.closed, o.closed_u, o.closed_v))
     throw Error(ErrorCode::kUsage, "'" + a.closed + "' is not one of u, v, uv, none",
                 Place{.option = "--closed"});
-  if (a.search != "fast" && a.search != "linear")
+  // The library's names; "known" (counts given as the answer) is for callers with hints.
+  if (a.search == "known" || !parse_count_search(a.search, o.search))
     throw Error(ErrorCode::kUsage, "'" + a.search + "' is not one of fast, linear",
                 Place{.option = "--search"});
-  o.search = a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast;
   if (!parse_parametrization(a.parameters, o.parametrization))
     throw Error(ErrorCode::kUsage,
                 "'" + a.parameters + "' is not one of paper, uniform, chord, centripetal, fewest",

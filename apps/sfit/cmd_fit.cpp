@@ -15,6 +15,7 @@
 #include "sfit/io/atomic_file.h"
 #include "sfit/io/formats.h"
 #include "sfit/io/surface_json.h"
+#include "sfit/option_names.h"
 #include "sfit/surface_fit.h"
 #include "surface_json_value.h"
 #ifdef SFIT_HAVE_RENDER

@@ -63,4 +63,11 @@ struct CurveFitOptions {
 /// curve); a row of 1 point gives a constant curve of degree 0 (a pole).
 CurveFit fit_curve(std::span<const Point> points, const CurveFitOptions& options);
 
+/// Checks one row and the options before fit_curve() for callers that fit a row on its own
+/// (fit_surface() validates its rows itself): at least one point, every coordinate finite, a
+/// closed row of 1 or >= 3 points, degree 1 ... kMaxDegree, the bound finite and >= 0, and no
+/// positions of the wrong length. Throws Error (kInputData for the points, kUsage for the
+/// options, naming the option as `degree`, `tol`, `positions`).
+void validate_curve(std::span<const Point> points, const CurveFitOptions& options);
+
 }  // namespace sfit

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sfit/curve_fit.h"
+#include "sfit/fit_limits.h"
 #include "sfit/parametrization.h"
 #include "sfit/rows.h"
 #include "sfit/surface.h"
@@ -75,7 +76,8 @@ struct FitResult {
 /// naming the row/point or option and the offending values.
 void validate(const Rows& rows, const FitOptions& options);
 
-/// T = fraction x the bounding-box diagonal on every axis (the CLI default is 1e-3).
+/// T = fraction x the bounding-box diagonal on every axis (the default fraction of every
+/// front end is kDefaultToleranceFraction, sfit/fit_limits.h).
 Point relative_tolerance(const Rows& rows, double fraction);
 
 /// The whole method: curve stage on each row (minimal count within T/2), re-representation on

@@ -1,0 +1,25 @@
+// sfit.load_rows(): every input format of `sfit fit`, through the CLI's reader registry.
+#include "bindings.h"
+#include "cli_common.h"
+#include "convert.h"
+
+namespace sfit::python {
+
+void bind_io(py::module_& m) {
+  m.def(
+      "load_rows",
+      [](const std::string& path) {
+        cli::Input in;
+        {
+          py::gil_scoped_release nogil;
+          in = cli::read_input(path);
+        }
+        return rows_to_list(in.rows);
+      },
+      py::arg("path"),
+      R"(Reads rows of points from any input `sfit fit` reads (.rows, .srows, .csv, and the
+section curves of .step/.iges where this build has them): a list of (N_j, 3) float64 arrays.
+Raises sfit.Error with file:line:column (codes input-unreadable, input-syntax, input-data).)");
+}
+
+}  // namespace sfit::python

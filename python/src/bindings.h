@@ -1,0 +1,37 @@
+// The parts of the Python module sfit._sfit, one file each (module.cpp puts them together).
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <string>
+
+#include "sfit/rows.h"
+#include "sfit/surface_fit.h"
+
+namespace sfit::python {
+
+namespace py = pybind11;
+
+/// A finished fit as Python sees it: the library's result and the rows it was fitted to
+/// (kept for Fit.save()'s deviation fields and Fit.points).
+struct PyFit {
+  FitResult result;
+  std::shared_ptr<const Rows> rows;
+};
+
+/// Raises sfit.Error(code "tolerance-not-met") if the fit's report misses the tolerance, as
+/// the CLI exits 7 then; the error's `fit` attribute holds the fit.
+void check_within_tolerance(const PyFit& fit);
+
+/// Writes `path` through the CLI's output registry (apps/sfit/outputs.h), as `sfit fit -o`.
+void save_output(const std::string& path, const Surface& surface, const PyFit* fit, bool mesh,
+                 int mesh_density, bool fields, const std::string& units);
+
+void bind_errors(py::module_& m);
+void bind_surface(py::module_& m);
+void bind_fit(py::module_& m);
+void bind_curve(py::module_& m);
+void bind_io(py::module_& m);
+
+}  // namespace sfit::python
