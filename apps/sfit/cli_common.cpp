@@ -111,6 +111,9 @@ Point parse_tolerance(const std::string& text, const std::string& option) {
     const char* e = b + tok.size();
     if (b != e && *b == '+') ++b;
     const auto r = std::from_chars(b, e, x);
+    if (!tok.empty() && r.ec == std::errc::result_out_of_range && r.ptr == e)
+      throw Error(ErrorCode::kUsage, "'" + tok + "' is out of the range of a double",
+                  Place{.option = option});
     if (tok.empty() || r.ec != std::errc() || r.ptr != e)
       throw Error(ErrorCode::kUsage, "'" + tok + "' is not a number (expected T or Tx,Ty,Tz)",
                   Place{.option = option});
