@@ -1,5 +1,6 @@
 #include "sfit/exchange/writers.h"
 #include "sfit/io/file_names.h"
+#include "sfit/io/formats.h"
 
 #include <algorithm>
 
@@ -31,7 +32,12 @@ void check_mesh_density(int n) {
 }
 
 std::vector<std::string> writer_extensions() {
-  return {"step", "stp", "igs", "iges", "obj", "stl", "ply", "vtk", "vts"};
+  std::vector<std::string> out;  // from the one format registry (sfit/io/formats.h)
+  for (const io::Format& f : io::formats())
+    if (f.writes && f.kind == io::FormatKind::kSurface &&
+        (f.part == io::FormatPart::kCad || f.part == io::FormatPart::kMesh))
+      for (std::string_view e : f.extensions) out.emplace_back(e);
+  return out;
 }
 
 void write_surface(const std::string& path, const Surface& s, const WriteOptions& o,
