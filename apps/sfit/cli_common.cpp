@@ -110,6 +110,9 @@ Point parse_tolerance(const std::string& text, const std::string& option) {
     const char* e = b + tok.size();
     if (b != e && *b == '+') ++b;
     const auto r = std::from_chars(b, e, x);
+    if (!tok.empty() && r.ec == std::errc::result_out_of_range && r.ptr == e)
+      throw Error(ErrorCode::kUsage, "'" + tok + "' is out of the range of a double",
+                  Place{.option = option});
     if (tok.empty() || r.ec != std::errc() || r.ptr != e)
       throw Error(ErrorCode::kUsage, "'" + tok + "' is not a number (expected T or Tx,Ty,Tz)",
                   Place{.option = option});
@@ -128,25 +131,24 @@ Point parse_tolerance(const std::string& text, const std::string& option) {
 }
 
 Input read_input(const std::string& path) {
+  // Dispatch through the one format registry (sfit/io/formats.h); '-' and unknown
+  // extensions are .rows text.
   const std::string ext = path == "-" ? "rows" : io::extension_of(path);
   const io::Format* f = io::find_format(ext);
-  if (f && f->kind == io::FormatKind::kRows && f->reads && !f->available)
+  const bool rows_format =
+      f && f->reads && (f->kind == io::FormatKind::kRows || f->part == io::FormatPart::kCad);
+  if (rows_format && !f->available)
     throw Error(ErrorCode::kUsage,
                 std::string(f->name) + " input needs " + std::string(io::part_name(f->part)) +
                     ", which this build of sfit lacks",
                 Place{.file = path});
-  if (f && f->kind == io::FormatKind::kSurface && f->reads && f->part == io::FormatPart::kCad &&
-      !f->available)
-    throw Error(ErrorCode::kUsage,
-                std::string(f->name) + " section input needs " +
-                    std::string(io::part_name(f->part)) + ", which this build of sfit lacks",
-                Place{.file = path});
-  if (ext == "csv") {
+  const io::FormatId id = rows_format ? f->id : io::FormatId::kRows;
+  if (id == io::FormatId::kCsv) {
     auto r = io::read_csv(path);
     return Input{std::move(r.rows), std::move(r.first_line), std::move(r.name)};
   }
 #ifdef SFIT_HAVE_EXCHANGE
-  if (exchange::is_exchange_input(path)) {
+  if (id == io::FormatId::kStep || id == io::FormatId::kIges) {
     auto r = exchange::read_sections(path);
     say(path + ": lengths in " + r.units +
         (r.units.find(' ') == std::string::npos ? " (the file's own unit, not converted)" : ""));
@@ -154,7 +156,7 @@ Input read_input(const std::string& path) {
                  std::move(r.units)};
   }
 #endif
-  if (io::is_binary_rows_path(path)) {
+  if (id == io::FormatId::kBinaryRows) {
     auto r = io::read_rows_binary(path);
     return Input{std::move(r.rows), std::move(r.first_line), std::move(r.name)};
   }

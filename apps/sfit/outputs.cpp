@@ -25,18 +25,23 @@ const std::map<std::string, Writer>& writers() {
       return std::string();
     };
 #ifdef SFIT_HAVE_EXCHANGE
-    for (const auto& ext : exchange::writer_extensions()) {
-      m[ext] = [](const std::string& p, const OutputContext& c) {
-        exchange::WriteOptions o;
-        o.mesh = c.mesh;
-        o.obj_freeform = c.obj_freeform;
-        o.normals = exchange::parse_normal_rule(c.normals);
-        o.mesh_density = c.mesh_density;
-        o.fields = c.fields;
-        o.units = c.units;
-        o.tolerance = c.fit ? c.fit->report.tolerance.minCoeff() : 0.0;
-        return exchange::write_surface(p, c.surface, o, c.fit, c.rows);
-      };
+    // Every other surface format of the registry (sfit/io/formats.h) this build has.
+    for (const io::Format& f : io::formats()) {
+      if (!f.writes || f.kind != io::FormatKind::kSurface || f.part == io::FormatPart::kCore ||
+          !f.available)
+        continue;
+      for (std::string_view ext : f.extensions)
+        m[std::string(ext)] = [](const std::string& p, const OutputContext& c) {
+          exchange::WriteOptions o;
+          o.mesh = c.mesh;
+          o.obj_freeform = c.obj_freeform;
+          o.normals = exchange::parse_normal_rule(c.normals);
+          o.mesh_density = c.mesh_density;
+          o.fields = c.fields;
+          o.units = c.units;
+          o.tolerance = c.fit ? c.fit->report.tolerance.minCoeff() : 0.0;
+          return exchange::write_surface(p, c.surface, o, c.fit, c.rows);
+        };
     }
 #endif
     return m;

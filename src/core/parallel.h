@@ -16,10 +16,13 @@
 #include <thread>
 #include <vector>
 
+#include "sfit/fit_limits.h"
+
 namespace sfit::detail {
 
 inline int resolve_threads(int requested) {
-  if (requested > 0) return requested;
+  // Never more than the library's limit (sfit/fit_limits.h): results do not depend on it.
+  if (requested > 0) return std::min(requested, kMaxThreads);
   const unsigned hw = std::thread::hardware_concurrency();
   return hw == 0 ? 1 : static_cast<int>(hw);
 }

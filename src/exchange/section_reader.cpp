@@ -196,13 +196,15 @@ SectionsFile read_sections(const std::string& path, const SectionReadOptions& op
   } else {
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0)
-      fail(ErrorCode::kInternal, path, std::string("cannot make a pipe: ") + std::strerror(errno));
+      fail(ErrorCode::kInputUnreadable, path,
+           std::string("cannot read the file: no pipe for the reader: ") + std::strerror(errno));
     std::fflush(nullptr);  // nothing buffered is written twice
     const pid_t pid = ::fork();
     if (pid < 0) {
       ::close(fds[0]);
       ::close(fds[1]);
-      fail(ErrorCode::kInternal, path, std::string("cannot fork: ") + std::strerror(errno));
+      fail(ErrorCode::kInputUnreadable, path,
+           std::string("cannot read the file: cannot start the reader: ") + std::strerror(errno));
     }
     if (pid == 0) {
       ::close(fds[0]);

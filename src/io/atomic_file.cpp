@@ -77,6 +77,9 @@ void check_writable(const std::string& path) {
   if (!S_ISDIR(st.st_mode)) fail(path, "'" + dir + "' is not a folder");
   if (::access(dir.c_str(), W_OK) != 0) fail(path, "folder '" + dir + "' is not writable");
   if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) fail(path, "it is a directory");
+  // A device, pipe or socket would be replaced by the rename, not written to.
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    fail(path, "it is not a regular file (a device, pipe or socket); give '-' for standard output");
 }
 
 void write_file_atomically(const std::string& path,

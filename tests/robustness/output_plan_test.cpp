@@ -4,6 +4,7 @@
 // '-o -' puts the JSON on standard output.
 #include <gtest/gtest.h>
 #include <sys/mount.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -104,6 +105,21 @@ TEST(OutputPlan, NoSpellingOrLinkOfTheInputIsWritten) {
                 "/hard.json' is the input file 'standard input': sfit never writes over "
                 "an input\n");
   EXPECT_EQ(contents(dir), before);
+}
+
+TEST(OutputPlan, ADeviceOrPipeIsNeverReplaced) {
+  // The rename of a finished output would replace a FIFO (or /dev/null) by a plain file.
+  const std::string dir = temp_dir();
+  const std::string fifo = dir + "/pipe.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const sfit::test::Run r = run_cli("fit " + q(good_rows()) + " --report " + q(fifo));
+  EXPECT_EQ(r.exit_code, 6) << r.err;
+  EXPECT_EQ(r.err, "sfit: error: " + fifo +
+                       ": cannot write output: it is not a regular file (a device, pipe or "
+                       "socket); give '-' for standard output\n");
+  struct stat st {};
+  ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the pipe is still a pipe";
 }
 
 TEST(OutputPlan, ALateRefusalLeavesEveryOldFileAndNoNewOne) {

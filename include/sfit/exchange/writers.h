@@ -31,9 +31,9 @@ std::vector<std::string> writer_extensions();
 
 /// The densities --mesh-density accepts whatever the surface: 0 (automatic) or
 /// kMinMeshDensity ... kMaxMeshDensity samples per direction (the mesh stays below 5e7
-/// vertices). Throws Error(kUsage, option "--mesh-density") otherwise, before any work.
+/// vertices, and its time to seconds). Throws Error(kUsage, option "--mesh-density") otherwise, before any work.
 inline constexpr int kMinMeshDensity = 3;
-inline constexpr int kMaxMeshDensity = 7000;
+inline constexpr int kMaxMeshDensity = 4096;
 void check_mesh_density(int samples);
 
 /// Writes `surface` to `path` in the format of its extension, atomically, and returns what

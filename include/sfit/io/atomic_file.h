@@ -23,7 +23,8 @@ void write_via_temporary(const std::string& path,
                          const std::function<void(const std::string& temporary)>& write);
 
 /// Throws Error(kOutputWrite) if `path` cannot be created: its folder is missing or not
-/// writable, or it is a directory. Lets the CLI refuse before a long fit.
+/// writable, or it is a directory, or it exists and is not a regular file (a device such as
+/// /dev/null, a pipe: the rename would replace it). Lets the CLI refuse before a long fit.
 void check_writable(const std::string& path);
 
 /// All or nothing for several outputs. While a batch is open on this thread,

@@ -24,7 +24,24 @@ enum class FormatKind {
   kPicture,  ///< a picture of the surface
 };
 
+/// Each format, for dispatch.
+enum class FormatId {
+  kRows,
+  kBinaryRows,
+  kCsv,
+  kSurfaceJson,
+  kStep,
+  kIges,
+  kObj,
+  kStl,
+  kPly,
+  kVtk,
+  kVts,
+  kPng,
+};
+
 struct Format {
+  FormatId id;
   std::string_view name;  ///< e.g. "STEP"
   std::vector<std::string_view>
       extensions;                ///< lower case, without the dot; first is the usual one
