@@ -8,6 +8,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "fit_options.h"
 #include "outputs.h"
 #include "sfit/error.h"
 #include "sfit/io/atomic_file.h"
@@ -20,18 +21,10 @@
 namespace sfit::cli {
 namespace {
 
-struct FitArgs {
+struct FitArgs : FitOptionArgs {
   std::string input;
   std::vector<std::string> outputs;
   std::string report;
-  int degree = 3;
-  std::optional<int> degree_u, degree_v;  // unset: --degree
-  std::optional<std::string> tol;
-  std::optional<double> tol_rel;
-  std::string closed;
-  std::string search = "fast";
-  std::string parameters = "paper";
-  int threads = 0;
   bool quiet = false;
   bool mesh = false;
   int mesh_density = 0;
@@ -74,35 +67,8 @@ std::string vec(const Point& p) {
 
 int run_fit(const FitArgs& a) {
   verbose = !a.quiet;
-  FitOptions o;
-  o.degree_u = a.degree_u.value_or(a.degree);
-  o.degree_v = a.degree_v.value_or(a.degree);
-  auto check_degree = [](int d, const char* opt) {
-    if (d < 1 || d > 20)
-      throw Error(ErrorCode::kUsage, fmt::format("degree {} is out of range 1 ... 20", d),
-                  Place{.option = opt}, {static_cast<double>(d)});
-  };
-  check_degree(a.degree, "--degree");
-  if (a.degree_u) check_degree(*a.degree_u, "--degree-u");
-  if (a.degree_v) check_degree(*a.degree_v, "--degree-v");
-  if (a.closed == "u" || a.closed == "uv" || a.closed == "vu") o.closed_u = true;
-  if (a.closed == "v" || a.closed == "uv" || a.closed == "vu") o.closed_v = true;
-  if (!a.closed.empty() && a.closed != "none" && !o.closed_u && !o.closed_v)
-    throw Error(ErrorCode::kUsage, "'" + a.closed + "' is not one of u, v, uv, none",
-                Place{.option = "--closed"});
-  o.search = a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast;
-  parse_parametrization(a.parameters, o.parametrization);  // checked by CLI11
-  o.threads = a.threads;
-  if (a.tol && a.tol_rel)
-    throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both",
-                Place{.option = "--tol-rel"});
-  if (a.tol_rel && !(*a.tol_rel >= 0 && *a.tol_rel <= 1))
-    throw Error(
-        ErrorCode::kUsage,
-        fmt::format("must be a fraction 0 ... 1 of the bounding-box diagonal, got {}", *a.tol_rel),
-        Place{.option = "--tol-rel"}, {*a.tol_rel});
-  Point tol_abs = Point::Constant(-1);
-  if (a.tol) tol_abs = parse_tolerance(*a.tol, "--tol");
+  const FitOptionPlan plan = plan_fit_options(a);
+  FitOptions o = plan.options;
   if (a.outputs.empty() && a.report.empty() && !wants_pictures(a))
     throw Error(ErrorCode::kUsage, "nothing to write: give -o OUT.json (and/or --report)",
                 Place{.option = "-o"});
@@ -119,8 +85,8 @@ int run_fit(const FitArgs& a) {
 
   Input in = read_input(a.input);
   const BoundingBox box = bounding_box(in.rows);
-  const double fraction = a.tol_rel.value_or(1e-3);
-  o.tolerance = tol_abs.x() >= 0 ? tol_abs : Point::Constant(fraction * box.diagonal());
+  const double fraction = plan.fraction;
+  o.tolerance = tolerance_for(plan, in.rows);
 
   std::size_t lo = SIZE_MAX, hi = 0;
   for (std::size_t j = 0; j < in.rows.size(); ++j) {
@@ -131,7 +97,7 @@ int run_fit(const FitArgs& a) {
                   in.rows.total_points(), lo, hi, o.closed_u ? ", closed rows" : "",
                   o.closed_v ? ", closed row sequence" : ""));
   say(fmt::format("degree {} x {}, tolerance {}{}", o.degree_u, o.degree_v, vec(o.tolerance),
-                  tol_abs.x() >= 0
+                  plan.absolute_tolerance
                       ? ""
                       : fmt::format(" ({} of the diagonal {})", g(fraction), g(box.diagonal()))));
   const bool show_progress = verbose && in.rows.total_points() >= 200000 && isatty(2);
@@ -204,25 +170,7 @@ void add_fit_command(CLI::App& app, Runner& run) {
                 "output file; the extension picks the format (.json .step .igs .obj .stl .ply "
                 ".vtk .vts; repeat -o for several)");
   c->add_option("--report", args->report, "write the fit report as JSON");
-  c->add_option("--degree", args->degree, "degree in both directions, 1 ... 20")->default_val(3);
-  c->add_option("--degree-u", args->degree_u, "degree along the rows (overrides --degree)");
-  c->add_option("--degree-v", args->degree_v, "degree across the rows (overrides --degree)");
-  c->add_option("--tol", args->tol,
-                "tolerance T or Tx,Ty,Tz, absolute, >= 0 (0 interpolates); "
-                "default 1e-3 of the bounding-box diagonal");
-  c->add_option("--tol-rel", args->tol_rel, "tolerance as a fraction of the bounding-box diagonal");
-  c->add_option("--closed", args->closed,
-                "closed directions: u (each row is a closed contour), v (the rows form a "
-                "closed sequence), uv (both), none");
-  c->add_option("--search", args->search, "count search: fast (default) or linear (the paper's)")
-      ->check(CLI::IsMember({"fast", "linear"}));
-  c->add_option("--parameters", args->parameters,
-                "how points get parameters, along and across the rows: paper (SFIT01's, by the "
-                "point's index; default), uniform (index), chord (chord length), centripetal, or "
-                "fewest (tries the four, keeps the fewest control points)")
-      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest"}));
-  c->add_option("--threads", args->threads, "threads (0: all cores); results do not depend on it")
-      ->check(CLI::Range(0, 4096));
+  add_fit_option_flags(c, *args);
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");
   c->add_option("--mesh-density", args->mesh_density,
                 "tessellation samples per direction (default: from the tolerance)");

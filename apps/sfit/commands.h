@@ -17,5 +17,8 @@ void add_pack_command(CLI::App& app, Runner& run);
 #ifdef SFIT_HAVE_RENDER
 void add_render_commands(CLI::App& app, Runner& run);
 #endif
+#ifdef SFIT_HAVE_SERVER
+void add_edit_command(CLI::App& app, Runner& run);
+#endif
 
 }  // namespace sfit::cli

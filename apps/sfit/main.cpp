@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
 #ifdef SFIT_HAVE_RENDER
   sfit::cli::add_render_commands(app, run);
 #endif
+#ifdef SFIT_HAVE_SERVER
+  sfit::cli::add_edit_command(app, run);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
