@@ -237,6 +237,13 @@ json state_json(const Session& s, bool with_rows) {
     }
     j["rows"] = std::move(rj);
     j["point_deviation"] = point_deviations(fit, rows);
+    json u = json::array();
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      u.push_back(
+          std::vector<double>(fit.u.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[k]),
+                              fit.u.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[k + 1])));
+    j["u"] = std::move(u);
+    j["v"] = fit.v;
   }
   return j;
 }

@@ -165,6 +165,8 @@ struct EditorServer::Impl {
 
   void routes() {
     http.set_payload_max_length(kMaxBody);
+    // Idle keep-alive connections hold a worker until this timeout: short, so stop() is quick.
+    http.set_keep_alive_timeout(1);
     http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
       const std::string host = req.get_header_value("Host");
       const std::string p = std::to_string(port);
@@ -214,6 +216,8 @@ struct EditorServer::Impl {
       res.set_content(std::string(a->data), std::string(a->mime));
     };
     http.Get("/", page);
+    http.Get("/favicon.ico",
+             [](const httplib::Request&, httplib::Response& res) { res.status = 204; });
     http.Get(R"(/(index\.html|js/[a-z_]+\.js|style\.css|vendor/[A-Za-z_.]+\.js))", page);
 
     http.Get("/api/state", [this](const httplib::Request& req, httplib::Response& res) {
