@@ -12,7 +12,16 @@ const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], ready
 
 // ---- the view ----------------------------------------------------------------------------
 const view = $("view");
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+// On a software rasteriser (SwiftShader, llvmpipe) multisampling costs most of each frame.
+function softwareGL() {
+  const gl = document.createElement("canvas").getContext("webgl2");
+  const info = gl && gl.getExtension("WEBGL_debug_renderer_info");
+  const name = info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : "";
+  if (gl) gl.getExtension("WEBGL_lose_context")?.loseContext();
+  return /swiftshader|llvmpipe|software/i.test(name);
+}
+hook.softwareGL = softwareGL();
+const renderer = new THREE.WebGLRenderer({ antialias: !hook.softwareGL, preserveDrawingBuffer: true });
 renderer.setPixelRatio(window.devicePixelRatio || 1);
 view.appendChild(renderer.domElement);
 const scene = new THREE.Scene();
@@ -40,7 +49,9 @@ function loop() {
   if (needsRender) {
     needsRender = false;
     sun.position.copy(camera.position);
+    const t0 = performance.now();
     renderer.render(scene, camera);
+    hook.renderMs = performance.now() - t0;
     hook.frames++;
     const now = performance.now();
     for (const f of frameWaiters) f(now);
@@ -165,8 +176,11 @@ function buildNet() {
   world.add(netLines);
 }
 
+let firstOfRow = [];  // flat index of each row's first point in the point buffers
 function buildPoints() {
   for (const o of [pointsObj, rowLines]) if (o) { world.remove(o); o.geometry.dispose(); }
+  firstOfRow = [];
+  rows.reduce((s, r) => { firstOfRow.push(s); return s + r.length; }, 0);
   const n = rows.reduce((s, r) => s + r.length, 0);
   const pos = new Float32Array(3 * n), col = new Float32Array(3 * n), line = [];
   let k = 0;
@@ -190,6 +204,20 @@ function buildPoints() {
   rowLines = new THREE.LineSegments(lg, new THREE.LineBasicMaterial({ color: 0x7a8894 }));
   rowLines.visible = $("points").checked;
   world.add(rowLines);
+}
+
+// Moves one drawn point (and its row's line) without rebuilding the buffers.
+function moveDrawnPoint(row, index, p) {
+  const k = firstOfRow[row] + index;
+  const q = p.map((x, a) => x - centre[a]);
+  const pos = pointsObj.geometry.attributes.position;
+  pos.setXYZ(k, q[0], q[1], q[2]);
+  pos.needsUpdate = true;
+  const lp = rowLines.geometry.attributes.position;
+  const seg = firstOfRow[row] - row + index - 1;  // the segment ending at this point
+  if (index > 0) lp.setXYZ(2 * seg + 1, q[0], q[1], q[2]);
+  if (index + 1 < rows[row].length) lp.setXYZ(2 * (seg + 1), q[0], q[1], q[2]);
+  lp.needsUpdate = true;
 }
 
 function markerAt(obj, p, colour, size) {
@@ -255,19 +283,22 @@ function showSelection() {
 
 // Shows a state; `job` (a move) gets its mouse-to-frame latency recorded.
 function applyState(st, job) {
+  const t0 = performance.now();
   const first = !state;
   state = st;
   if (st.rows) { rows = st.rows; dev = st.point_deviation; params = { u: st.u, v: st.v }; }
   if (first) { frameCamera(); $("input").textContent = st.input; fillFormats(); }
   buildSurface(st.final);
-  if (st.rows || job) buildPoints();
+  if (st.rows || (job && job.phase !== "drag")) buildPoints();
   updateMarkers();
   showReport();
   if (st.rows) { showOptions(); showSelection(); }
   hook.state = st;
+  hook.applyMs = performance.now() - t0;
   needsRender = true;
   if (job && job.t !== undefined)
-    frameWaiters.push((now) => hook.latencies.push({ ms: now - job.t, final: st.final, phase: job.phase }));
+    frameWaiters.push((now) => hook.latencies.push({ ms: now - job.t, final: st.final, phase: job.phase,
+      wait: job.sent - job.t, request: job.received - job.sent, apply: performance.now() - job.received }));
 }
 
 function message(text, good = false) {
@@ -282,10 +313,13 @@ function queueMove(job) { pending = job; pump(); }
 async function pump() {
   if (inFlight || !pending) return;
   const job = pending; pending = null; inFlight = true;
+  job.sent = performance.now();
   try {
     const st = await api.edit({ op: "move", row: job.row, index: job.index, to: job.to,
       phase: job.phase, seq: ++seq }, job.phase !== "drag");
+    job.received = performance.now();
     if (!st.skipped) applyState(st, job);
+    job.applied = performance.now();
     message("");
   } catch (e) {
     message(e.message);
@@ -370,6 +404,7 @@ renderer.domElement.addEventListener("pointermove", (e) => {
   const to = dragTarget(e);
   if (!to) return;
   rows[drag.row][drag.index] = to;  // the point follows the hand at once
+  moveDrawnPoint(drag.row, drag.index, to);
   drag.last = { row: drag.row, index: drag.index, to };
   clearTimeout(restTimer);
   queueMove({ ...drag.last, phase: "drag", t: e.timeStamp });
