@@ -81,11 +81,12 @@ const zebraMaterial = new THREE.ShaderMaterial({
       float s = step(0.5, fract(6.0 * (r.y * 0.5 + 0.5)));
       gl_FragColor = vec4(vec3(0.08 + 0.85 * s), 1.0); }`,
 });
-const shadedMaterial = new THREE.MeshStandardMaterial({
-  color: 0x8fb3d9, side: THREE.DoubleSide, roughness: 0.55, metalness: 0.1,
+// Phong, not the physically based MeshStandardMaterial: far cheaper per pixel on software GL.
+const shadedMaterial = new THREE.MeshPhongMaterial({
+  color: 0x8fb3d9, side: THREE.DoubleSide, shininess: 40, specular: 0x333333,
   polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
-const colouredMaterial = new THREE.MeshStandardMaterial({
-  vertexColors: true, side: THREE.DoubleSide, roughness: 0.6, metalness: 0.05,
+const colouredMaterial = new THREE.MeshPhongMaterial({
+  vertexColors: true, side: THREE.DoubleSide, shininess: 20, specular: 0x222222,
   polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
 
 function boxOf(rs) {
@@ -101,7 +102,7 @@ function frameCamera() {
   centre = [0, 1, 2].map((a) => (lo[a] + hi[a]) / 2);
   diagonal = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
   camera.near = diagonal / 1000; camera.far = diagonal * 20;
-  camera.position.set(0.6 * diagonal, -0.72 * diagonal, 0.55 * diagonal);
+  camera.position.set(0.7 * diagonal, -0.85 * diagonal, 0.65 * diagonal);
   camera.up.set(0, 0, 1);
   controls.target.set(0, 0, 0);
   camera.updateProjectionMatrix();
