@@ -446,11 +446,13 @@ async function sendOptions(o) {
     optInFlight = false;
   }
 }
+// The T slider is live; one movement of it is one undo step.
+const tolOf = () => diagonal * Math.pow(10, Number($("tol").value));
 $("tol").addEventListener("input", () => {
-  const t = diagonal * Math.pow(10, Number($("tol").value));
-  $("tolText").textContent = g4(t);
-  sendOptions({ tolerance: t });
+  $("tolText").textContent = g4(tolOf());
+  sendOptions({ tolerance: tolOf(), phase: "drag" });
 });
+$("tol").addEventListener("change", () => sendOptions({ tolerance: tolOf(), phase: "end" }));
 $("degU").addEventListener("change", () => sendOptions({ degree: [Number($("degU").value), Number($("degV").value)] }));
 $("degV").addEventListener("change", () => sendOptions({ degree: [Number($("degU").value), Number($("degV").value)] }));
 for (const id of ["closedU", "closedV"])

@@ -125,7 +125,7 @@ json options_json(const FitOptions& o) {
 }
 
 FitOptions options_from_json(const json& r, const FitOptions& current) {
-  check_keys(r, {"tolerance", "degree", "closed", "search", "parameters"});
+  check_keys(r, {"tolerance", "degree", "closed", "search", "parameters", "phase"});
   FitOptions o = current;
   if (r.contains("tolerance")) {
     const json& t = r["tolerance"];
@@ -164,25 +164,23 @@ FitOptions options_from_json(const json& r, const FitOptions& current) {
   return o;
 }
 
+MovePhase phase_of(const json& r) {
+  if (!r.contains("phase")) return MovePhase::kOnce;
+  const json& p = r["phase"];
+  if (p == "drag") return MovePhase::kDrag;
+  if (p == "rest") return MovePhase::kRest;
+  if (p == "end") return MovePhase::kEnd;
+  if (p != "once") bad("phase", "must be \"drag\", \"rest\", \"end\" or \"once\"");
+  return MovePhase::kOnce;
+}
+
 void apply_edit(Session& s, const json& r) {
   const json& op = field(r, "op");
   if (!op.is_string()) bad("op", "must be a string");
   const std::string name = op.get<std::string>();
   if (name == "move") {
     check_keys(r, {"op", "row", "index", "to", "phase", "seq"});
-    MovePhase phase = MovePhase::kOnce;
-    if (r.contains("phase")) {
-      const json& p = r["phase"];
-      if (p == "drag")
-        phase = MovePhase::kDrag;
-      else if (p == "rest")
-        phase = MovePhase::kRest;
-      else if (p == "end")
-        phase = MovePhase::kEnd;
-      else if (p != "once")
-        bad("phase", "must be \"drag\", \"rest\", \"end\" or \"once\"");
-    }
-    s.move(index_of(r, "row"), index_of(r, "index"), point_of(field(r, "to"), "to"), phase);
+    s.move(index_of(r, "row"), index_of(r, "index"), point_of(field(r, "to"), "to"), phase_of(r));
   } else if (name == "insert") {
     check_keys(r, {"op", "row", "index", "point"});
     s.insert_point(index_of(r, "row"), index_of(r, "index"), point_of(field(r, "point"), "point"));

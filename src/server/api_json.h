@@ -19,8 +19,11 @@ nlohmann::json state_json(const Session& session, bool with_rows);
 nlohmann::json options_json(const FitOptions& o);
 /// `current` with the fields of `request` changed ({"tolerance": T | [Tx, Ty, Tz],
 /// "degree": [p, q], "closed": [u, v], "search": "fast" | "linear", "parameters": name});
-/// the library checks the values when it fits.
+/// the library checks the values when it fits. ("phase" is read by phase_of().)
 FitOptions options_from_json(const nlohmann::json& request, const FitOptions& current);
+
+/// The "phase" of a request: "once" (absent), "drag", "rest", "end".
+MovePhase phase_of(const nlohmann::json& request);
 
 /// Applies one POST /api/edit request to `session`.
 void apply_edit(Session& session, const nlohmann::json& request);

@@ -280,7 +280,7 @@ struct EditorServer::Impl {
     http.Post("/api/options", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const json body = body_of(req);
-        session.set_options(options_from_json(body, session.options()));
+        session.set_options(options_from_json(body, session.options()), phase_of(body));
         reply(res, 200, state(true));
       });
     });

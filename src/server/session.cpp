@@ -47,6 +47,7 @@ std::vector<Point> Session::row_points(std::size_t row) const {
 }
 
 void Session::commit(Change c) {
+  if (!undo_.empty()) undo_.back().open = false;
   undo_.push_back(std::move(c));
   if (undo_.size() > kMaxUndo) undo_.pop_front();
   redo_.clear();
@@ -174,10 +175,19 @@ void Session::delete_row(std::size_t row) {
   commit(std::move(c));
 }
 
-void Session::set_options(const FitOptions& options) {
+void Session::set_options(const FitOptions& options, MovePhase phase) {
   finish_drag();
+  const bool live = phase == MovePhase::kDrag || phase == MovePhase::kRest;
   Change c{.kind = Change::Kind::kOptions, .options_before = options_, .options_after = options};
   apply(c, true);
+  if (!undo_.empty() && undo_.back().kind == Change::Kind::kOptions && undo_.back().open &&
+      redo_.empty()) {
+    undo_.back().options_after = options;  // the same slider movement
+    undo_.back().open = live;
+    ++version_;
+    return;
+  }
+  c.open = live;
   commit(std::move(c));
 }
 
@@ -213,6 +223,7 @@ void Session::apply(const Change& c, bool forward) {
 bool Session::undo() {
   finish_drag();
   if (undo_.empty()) return false;
+  undo_.back().open = false;
   apply(undo_.back(), false);
   redo_.push_back(std::move(undo_.back()));
   undo_.pop_back();

@@ -22,6 +22,7 @@ struct Change {
   std::size_t row = 0;
   std::vector<Point> before, after;  ///< the row's points (kRow), the row (kInsert/kDeleteRow)
   FitOptions options_before, options_after;  ///< kOptions
+  bool open = false;  ///< kOptions from a live control (a slider) that is still moving
 };
 
 /// Where a move stands in a drag.
@@ -49,7 +50,9 @@ class Session {
   void insert_row(std::size_t row, std::vector<Point> points);  ///< before `row` (M appends)
   void delete_row(std::size_t row);
   void replace_row(std::size_t row, std::vector<Point> points);
-  void set_options(const FitOptions& options);
+  /// New fit options (a full fit). kDrag: a live control moves (the T slider); consecutive
+  /// kDrag changes and the kEnd that closes them are one undo step.
+  void set_options(const FitOptions& options, MovePhase phase = MovePhase::kOnce);
   bool undo();  ///< false: nothing to undo
   bool redo();
   /// Ends an open drag where it is (full refit, one undo step); nothing without one.

@@ -126,6 +126,27 @@ TEST(Session, UndoAndRedoOverMoreThanAHundredStepsOfEveryKind) {
   }
 }
 
+TEST(Session, OneMovementOfALiveSliderIsOneUndoStep) {
+  const Data d = ship();
+  Session s(d.rows, d.options);
+  const FitResult initial = s.result();
+  FitOptions o = d.options;
+  for (int k = 1; k <= 5; ++k) {
+    o.tolerance = d.options.tolerance * (1 + 0.2 * k);
+    s.set_options(o, MovePhase::kDrag);
+    EXPECT_EQ(s.undo_depth(), 1u);
+  }
+  s.set_options(o, MovePhase::kEnd);
+  EXPECT_EQ(s.undo_depth(), 1u);
+  test::expect_same_surface(s.result(), fit_surface(d.rows, o));
+  s.set_options(d.options, MovePhase::kDrag);  // a new movement: a new step
+  EXPECT_EQ(s.undo_depth(), 2u);
+  ASSERT_TRUE(s.undo());
+  ASSERT_TRUE(s.undo());
+  test::expect_same_surface(s.result(), initial);
+  EXPECT_EQ(s.options().tolerance, d.options.tolerance);
+}
+
 TEST(Session, ARefusedEditChangesNothing) {
   const Data d = ship();
   Session s(d.rows, d.options);
