@@ -37,6 +37,13 @@ scene.add(world);
 let needsRender = true;
 let frameWaiters = [];
 controls.addEventListener("change", () => (needsRender = true));
+// On software GL the pixels dominate a frame: while a point is dragged the view is drawn at
+// half resolution (the quick image), at full resolution again when the hand lets go.
+function coarseImage(on) {
+  if (!hook.softwareGL) return;
+  renderer.setPixelRatio((window.devicePixelRatio || 1) * (on ? 0.5 : 1));
+  resize();
+}
 function resize() {
   const w = view.clientWidth, h = view.clientHeight;
   renderer.setSize(w, h);
@@ -397,6 +404,7 @@ renderer.domElement.addEventListener("pointerdown", (e) => {
   const p = rows[hit.row][hit.index];
   drag = { ...hit, start: new THREE.Vector3(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]), last: null };
   controls.enabled = false;
+  coarseImage(true);
   renderer.domElement.setPointerCapture(e.pointerId);
   e.preventDefault();
 });
@@ -417,6 +425,7 @@ function endDrag(e) {
   const d = drag;
   drag = null;
   controls.enabled = true;
+  coarseImage(false);
   clearTimeout(restTimer);
   if (d.last) queueMove({ ...d.last, phase: "end", t: e.timeStamp });
 }
