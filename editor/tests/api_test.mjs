@@ -250,6 +250,23 @@ test("exports beside INPUT through the writers", async () => {
   assert.match(d.headers["content-disposition"], /attachment; filename="ship_px121_stations-edited.json"/);
 });
 
+test("the page and three.js are served by the binary itself", async () => {
+  const page = await request(ed.port, "GET", "/");
+  assert.equal(page.status, 200);
+  assert.match(page.text, /importmap/);
+  const st = (await api.get("/api/state?rows=0")).json;
+  const three = await request(ed.port, "GET", "/vendor/three.module.min.js");
+  assert.equal(three.status, st.three ? 200 : 404);
+  if (st.three) assert.match(three.text, /REVISION/);
+  assert.equal((await request(ed.port, "GET", "/js/app.js")).status, 200);
+  assert.equal((await request(ed.port, "GET", "/etc/passwd")).status, 404);
+});
+
+test("a second editor on a port in use refuses to start (exit 2)", async () => {
+  await assert.rejects(startEditor(SFIT, ROWS, ["--port", String(ed.port)]),
+    /exited 2: .*cannot listen on 127\.0\.0\.1:\d+/s);
+});
+
 test("SIGTERM ends the server cleanly", async () => {
   const r = await ed.stop();
   ed = null;

@@ -36,7 +36,11 @@ export function startEditor(sfit, rows, extra = []) {
   const exited = new Promise((res) => proc.on("exit", (code, signal) => res({ code, signal })));
   return new Promise((resolve, reject) => {
     const timer = setTimeout(() => reject(new Error("sfit edit did not start: " + err)), 60000);
-    exited.then((r) => reject(new Error(`sfit edit exited ${r.code}: ${err}`)));
+    exited.then((r) => {
+      clearTimeout(timer);
+      rmSync(dir, { recursive: true, force: true });
+      reject(new Error(`sfit edit exited ${r.code}: ${err}`));
+    });
     proc.stderr.on("data", (d) => {
       err += d;
       const m = err.match(/sfit: editing (.*) at (http:\/\/127\.0\.0\.1:(\d+)\/\?token=([0-9a-f]+))/);

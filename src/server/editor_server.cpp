@@ -174,6 +174,12 @@ struct EditorServer::Impl {
     // Headers and body go out as separate writes: without TCP_NODELAY, Nagle's algorithm and
     // the client's delayed ACK add some 40 ms to every response.
     http.set_tcp_nodelay(true);
+    // httplib's default also sets SO_REUSEPORT, which would let a second editor bind the same
+    // port and share its connections: only SO_REUSEADDR (a port in TIME_WAIT may be reused).
+    http.set_socket_options([](socket_t sock) {
+      int yes = 1;
+      setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+    });
     http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
       const std::string host = req.get_header_value("Host");
       const std::string p = std::to_string(port);
