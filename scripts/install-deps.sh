@@ -17,8 +17,25 @@ missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
 done
+# The editor's page and tests: three.js and puppeteer-core from editor/package-lock.json
+# (puppeteer-core downloads no browser: the tests use Debian's chromium). Debian's nodejs
+# comes without npm (package npm); nodejs builds that bundle npm conflict with that package.
+npm_ci() {
+  [ -f "$here/../editor/package-lock.json" ] || return 0
+  if ! command -v npm >/dev/null 2>&1 && command -v apt-get >/dev/null 2>&1; then
+    ${SUDO:-} apt-get install -y -qq --no-install-recommends npm
+  fi
+  local dir="$here/../editor"
+  # Up to date when the last npm ci was of this very lock file.
+  cmp -s "$dir/package-lock.json" "$dir/node_modules/.sfit-installed-lock" && return 0
+  (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error &&
+    cp package-lock.json node_modules/.sfit-installed-lock)
+}
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#pkgs[@]} packages present"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  npm_ci
   exit 0
 fi
 SUDO=""
@@ -27,3 +44,4 @@ echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+npm_ci

@@ -1,5 +1,7 @@
 #include "cli_common.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -66,6 +68,31 @@ void harden_options(CLI::App& app) {
 
 Point CheckedFitOptions::tolerance(const Rows& rows) const {
   return relative() ? relative_tolerance(rows, fraction) : absolute;
+}
+
+void add_fit_option_flags(CLI::App* c, FitOptionArgs& a) {
+  c->add_option("--degree", a.degree,
+                fmt::format("degree in both directions, {} ... {}", kMinFitDegree, kMaxFitDegree))
+      ->default_val(3);
+  c->add_option("--degree-u", a.degree_u, "degree along the rows (overrides --degree)");
+  c->add_option("--degree-v", a.degree_v, "degree across the rows (overrides --degree)");
+  c->add_option("--tol", a.tol,
+                "tolerance T or Tx,Ty,Tz, absolute, >= 0 (0 interpolates); "
+                "default 1e-3 of the bounding-box diagonal");
+  c->add_option("--tol-rel", a.tol_rel, "tolerance as a fraction of the bounding-box diagonal");
+  c->add_option("--closed", a.closed,
+                "closed directions: u (each row is a closed contour), v (the rows form a "
+                "closed sequence), uv (both), none");
+  c->add_option("--search", a.search, "count search: fast (default) or linear (the paper's)")
+      ->check(CLI::IsMember({"fast", "linear"}));
+  c->add_option("--parameters", a.parameters,
+                "how points get parameters, along and across the rows: paper (SFIT01's, by the "
+                "point's index; default), uniform (index), chord (chord length), centripetal, or "
+                "fewest (tries the four, keeps the fewest control points)")
+      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest"}));
+  c->add_option("--threads", a.threads,
+                "threads, 0 (all cores) ... " + std::to_string(kMaxThreads) +
+                    "; results do not depend on it");
 }
 
 CheckedFitOptions check_fit_options(const FitOptionArgs& a) {

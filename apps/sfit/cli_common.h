@@ -14,7 +14,7 @@ namespace sfit::cli {
 /// error, and a whole number is read in decimal ("010" is 10, "0x10" is refused).
 void harden_options(CLI::App& app);
 
-/// The fit's options as the command line gives them; 'fit' and 'render-rows' both hold them
+/// The fit's options as the command line gives them; 'fit', 'edit' and 'render-rows' hold them
 /// and both check them with check_fit_options().
 struct FitOptionArgs {
   int degree = 3;
@@ -26,6 +26,9 @@ struct FitOptionArgs {
   std::string parameters = "paper";
   int threads = 0;
 };
+/// Adds --degree, --degree-u, --degree-v, --tol, --tol-rel, --closed, --search, --parameters
+/// and --threads to `c`, bound to `a` (fit and edit share them).
+void add_fit_option_flags(CLI::App* c, FitOptionArgs& a);
 /// Checked options: `options` has everything but the tolerance, which comes from the data
 /// unless it was given absolutely (tolerance()).
 struct CheckedFitOptions {

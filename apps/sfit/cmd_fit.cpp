@@ -181,28 +181,7 @@ void add_fit_command(CLI::App& app, Runner& run) {
                     "); '-': the JSON on standard output; repeat -o for several; none: "
                     "the summary only");
   c->add_option("--report", args->report, "write the fit report as JSON ('-': standard output)");
-  c->add_option("--degree", args->degree,
-                fmt::format("degree in both directions, {} ... {}", kMinFitDegree, kMaxFitDegree))
-      ->default_val(3);
-  c->add_option("--degree-u", args->degree_u, "degree along the rows (overrides --degree)");
-  c->add_option("--degree-v", args->degree_v, "degree across the rows (overrides --degree)");
-  c->add_option("--tol", args->tol,
-                "tolerance T or Tx,Ty,Tz, absolute, >= 0 (0 interpolates); "
-                "default 1e-3 of the bounding-box diagonal");
-  c->add_option("--tol-rel", args->tol_rel, "tolerance as a fraction of the bounding-box diagonal");
-  c->add_option("--closed", args->closed,
-                "closed directions: u (each row is a closed contour), v (the rows form a "
-                "closed sequence), uv (both), none");
-  c->add_option("--search", args->search, "count search: fast (default) or linear (the paper's)")
-      ->check(CLI::IsMember({"fast", "linear"}));
-  c->add_option("--parameters", args->parameters,
-                "how points get parameters, along and across the rows: paper (SFIT01's, by the "
-                "point's index; default), uniform (index), chord (chord length), centripetal, or "
-                "fewest (tries the four, keeps the fewest control points)")
-      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest"}));
-  c->add_option("--threads", args->threads,
-                "threads, 0 (all cores) ... " + std::to_string(kMaxThreads) +
-                    "; results do not depend on it");
+  add_fit_option_flags(c, *args);
   // Mesh outputs (.obj .stl .ply .vtk .vts); defaults and checks are the library's
   // (sfit/exchange/tessellate.h), see docs/meshes.md.
   c->add_flag("--mesh", args->mesh, "(the default) write .obj as a triangle mesh");

@@ -18,5 +18,8 @@ void add_formats_command(CLI::App& app, Runner& run);
 #ifdef SFIT_HAVE_RENDER
 void add_render_commands(CLI::App& app, Runner& run);
 #endif
+#ifdef SFIT_HAVE_SERVER
+void add_edit_command(CLI::App& app, Runner& run);
+#endif
 
 }  // namespace sfit::cli

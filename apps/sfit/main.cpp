@@ -31,6 +31,9 @@ int main(int argc, char** argv) {
   sfit::cli::add_render_commands(app, run);
 #endif
   sfit::cli::harden_options(app);  // empty values refused, whole numbers read in decimal
+#ifdef SFIT_HAVE_SERVER
+  sfit::cli::add_edit_command(app, run);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

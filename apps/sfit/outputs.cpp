@@ -51,6 +51,12 @@ const std::map<std::string, Writer>& writers() {
 
 }  // namespace
 
+std::vector<std::string> output_extensions() {
+  std::vector<std::string> v;
+  for (const auto& [ext, writer] : writers()) v.push_back(ext);
+  return v;
+}
+
 void check_output_extension(const std::string& path, const std::string& option,
                             io::FormatKind kind) {
   const std::string e = extension_of(path);

@@ -30,6 +30,8 @@ struct OutputContext {
 };
 
 using io::extension_of;
+/// Extensions -o accepts in this build (the registry's surface formats this build writes).
+std::vector<std::string> output_extensions();
 /// Throws Error(kUsage, naming `option`) unless the format registry has a format of `kind`
 /// that this build writes for the extension of `path` (unknown, or known but its part is not
 /// built: both named).

@@ -1,0 +1,25 @@
+// The editor's JSON API (docs/editor.md), with the token from the page's address.
+const token = new URLSearchParams(location.search).get("token") || "";
+
+export class ApiError extends Error {}
+
+export async function call(method, path, body) {
+  const res = await fetch(path, {
+    method,
+    headers: { "X-Sfit-Token": token, "Content-Type": "application/json" },
+    body: body === undefined ? undefined : JSON.stringify(body),
+  });
+  const j = await res.json();
+  if (!res.ok) throw new ApiError(j.error || `HTTP ${res.status}`);
+  return j;
+}
+
+export const getState = (rows = true) => call("GET", `/api/state${rows ? "" : "?rows=0"}`);
+export const edit = (op, rows = true) => call("POST", `/api/edit${rows ? "" : "?rows=0"}`, op);
+export const undo = () => call("POST", "/api/undo", {});
+export const redo = () => call("POST", "/api/redo", {});
+export const setOptions = (o) => call("POST", "/api/options", o);
+export const save = () => call("POST", "/api/save", {});
+export const exportBeside = (format) => call("POST", "/api/export", { format });
+export const downloadUrl = (format) =>
+  `/api/export?format=${encodeURIComponent(format)}&token=${encodeURIComponent(token)}`;

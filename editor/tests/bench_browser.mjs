@@ -1,0 +1,64 @@
+// Latency of the editor in the browser: from the mouse event of a drag step to the frame
+// that shows its refitted surface, on a 100 x 100 grid (10^4 points; bench/synthetic.h's
+// terrain). Drag steps that a newer one overtook are skipped, not shown (latest wins), so
+// only the shown ones have a latency. Usage (after building):
+//   SFIT_CLI=build/apps/sfit/sfit node editor/tests/bench_browser.mjs [rows] [points per row]
+import { writeFileSync, mkdtempSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join } from "node:path";
+import { skipUnlessChromium, loadPuppeteer, startEditor, launch } from "./browser.mjs";
+
+skipUnlessChromium();
+const SFIT = process.env.SFIT_CLI;
+if (!SFIT) throw new Error("set SFIT_CLI to the built sfit");
+const M = Number(process.argv[2] || 100), N = Number(process.argv[3] || 100);
+
+const terrain = (s, t) => [100 * s, 100 * t,
+  10 * Math.sin(3 * s) * Math.cos(2 * t) + 5 * s * t * t + 0.5 * Math.sin(17 * s + 11 * t)];
+const dir = mkdtempSync(join(tmpdir(), "sfit-bench-"));
+const file = join(dir, `grid${M}x${N}.rows`);
+let text = "";
+for (let j = 0; j < M; j++) {
+  for (let k = 0; k < N; k++) text += terrain(k / (N - 1), j / (M - 1)).join(" ") + "\n";
+  text += "\n";
+}
+writeFileSync(file, text);
+
+const ed = await startEditor(SFIT, file);
+const puppeteer = await loadPuppeteer();
+const browser = await launch(puppeteer);
+const page = await browser.newPage();
+await page.goto(ed.url);
+await page.waitForFunction(() => window.sfitEditor && window.sfitEditor.ready, { timeout: 120000 });
+await page.evaluate(() => window.sfitEditor.nextFrame());
+
+const pctl = (xs, q) => { const s = [...xs].sort((a, b) => a - b); return s[Math.min(s.length - 1, Math.floor(q * s.length))]; };
+const results = [];
+for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(M / 3), Math.floor(N / 4)]]) {
+  await page.evaluate(() => { window.sfitEditor.latencies = []; });
+  const s = await page.evaluate((r, i) => window.sfitEditor.screenOf(r, i), row, index);
+  await page.mouse.move(s.x, s.y);
+  await page.mouse.down();
+  const moves = 60;
+  for (let k = 1; k <= moves; k++) {
+    await page.mouse.move(s.x + k, s.y - k);
+    await new Promise((r) => setTimeout(r, 16));
+  }
+  await page.mouse.up();
+  await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging,
+    { timeout: 120000 });
+  const lat = await page.evaluate(() => window.sfitEditor.latencies);
+  results.push({ moves, lat });
+}
+const drag = results.flatMap((r) => r.lat.filter((l) => l.phase === "drag").map((l) => l.ms));
+const fin = results.flatMap((r) => r.lat.filter((l) => l.final).map((l) => l.ms));
+const med = (k) => pctl(results.flatMap((r) => r.lat.filter((l) => l.phase === "drag").map((l) => l[k])), 0.5);
+console.log(`  median split: waiting for the previous request ${med("wait").toFixed(1)} ms, request ${med("request").toFixed(1)} ms, ` +
+  `tessellation and frame ${med("apply").toFixed(1)} ms`);
+const moves = results.reduce((s, r) => s + r.moves, 0);
+console.log(`points ${M * N}: mouse event -> new frame, quick (drag) p50 ${pctl(drag, 0.5).toFixed(1)} ms, ` +
+  `p95 ${pctl(drag, 0.95).toFixed(1)} ms (${drag.length} of ${moves} moves shown, the rest overtaken); ` +
+  `final refit after release p50 ${pctl(fin, 0.5).toFixed(1)} ms`);
+await browser.close();
+await ed.stop();
+rmSync(dir, { recursive: true, force: true });

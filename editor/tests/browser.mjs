@@ -1,0 +1,75 @@
+// Shared by the browser tests and the browser benchmark: start `sfit edit` on a copy of a
+// data set, launch the system Chromium headless through puppeteer-core.
+import { spawn } from "node:child_process";
+import { existsSync, mkdtempSync, copyFileSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, basename } from "node:path";
+
+export const CHROMIUM = process.env.SFIT_CHROMIUM || "/usr/bin/chromium";
+
+/// Exit code CTest reads as "skipped" (SKIP_RETURN_CODE).
+export const SKIP = 77;
+
+export function skipUnlessChromium() {
+  if (!existsSync(CHROMIUM)) {
+    console.log(`SKIP: ${CHROMIUM} is not installed (Debian package chromium); browser tests not run`);
+    process.exit(SKIP);
+  }
+}
+
+export async function loadPuppeteer() {
+  try {
+    return (await import("puppeteer-core")).default;
+  } catch (e) {
+    throw new Error("puppeteer-core is missing: run 'npm ci' in editor/ (scripts/install-deps.sh does)");
+  }
+}
+
+/// Starts `sfit edit` on a copy of `rows` in a fresh folder; resolves with {url, port, token,
+/// dir, input, proc, stop()} once the server prints its address.
+export function startEditor(sfit, rows, extra = []) {
+  const dir = mkdtempSync(join(tmpdir(), "sfit-edit-test-"));
+  const input = join(dir, basename(rows));
+  copyFileSync(rows, input);
+  const proc = spawn(sfit, ["edit", input, "--no-browser", ...extra], { stdio: ["ignore", "ignore", "pipe"] });
+  let err = "";
+  const exited = new Promise((res) => proc.on("exit", (code, signal) => res({ code, signal })));
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error("sfit edit did not start: " + err)), 60000);
+    exited.then((r) => {
+      clearTimeout(timer);
+      rmSync(dir, { recursive: true, force: true });
+      reject(new Error(`sfit edit exited ${r.code}: ${err}`));
+    });
+    proc.stderr.on("data", (d) => {
+      err += d;
+      const m = err.match(/sfit: editing (.*) at (http:\/\/127\.0\.0\.1:(\d+)\/\?token=([0-9a-f]+))/);
+      if (!m) return;
+      clearTimeout(timer);
+      resolve({
+        url: m[2], port: Number(m[3]), token: m[4], dir, input, proc, stderr: () => err,
+        async stop() {
+          proc.kill("SIGTERM");
+          const r = await exited;
+          rmSync(dir, { recursive: true, force: true });
+          return r;
+        },
+      });
+    });
+  });
+}
+
+export async function launch(puppeteer) {
+  const profile = mkdtempSync(join(tmpdir(), "sfit-chromium-"));
+  const browser = await puppeteer.launch({
+    executablePath: CHROMIUM,
+    headless: true,
+    args: ["--headless=new", "--no-sandbox", "--enable-unsafe-swiftshader", "--use-angle=swiftshader",
+      "--disable-background-networking", "--disable-component-update", "--disable-sync",
+      "--no-first-run", `--user-data-dir=${profile}`, "--window-size=1280,800"],
+    defaultViewport: { width: 1280, height: 800 },
+  });
+  const close = browser.close.bind(browser);
+  browser.close = async () => { await close(); rmSync(profile, { recursive: true, force: true }); };
+  return browser;
+}

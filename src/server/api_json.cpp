@@ -1,0 +1,250 @@
+#include "api_json.h"
+
+#include <cmath>
+#include <limits>
+
+#include "sfit/error.h"
+#include "sfit/io/surface_json.h"
+#include "surface_json_value.h"
+
+namespace sfit::server {
+
+using nlohmann::json;
+
+namespace {
+
+[[noreturn]] void bad(const std::string& field, const std::string& what) {
+  throw Error(ErrorCode::kUsage, what, Place{.option = field});
+}
+
+json point_json(const Point& p) {
+  return json::array({p.x(), p.y(), p.z()});
+}
+
+const json& field(const json& j, const char* name) {
+  if (!j.contains(name)) bad(name, "missing");
+  return j.at(name);
+}
+
+std::size_t index_of(const json& j, const char* name) {
+  const json& v = field(j, name);
+  if (v.is_number_unsigned()) return v.get<std::size_t>();
+  if (v.is_number_integer()) bad(name, "must be >= 0, got " + v.dump());
+  bad(name, "must be a whole number >= 0, got " + v.dump());
+}
+
+double finite(const json& v, const std::string& name) {
+  if (!v.is_number()) bad(name, "must be a number, got " + v.dump());
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) bad(name, "must be finite, got " + v.dump());
+  return x;
+}
+
+Point point_of(const json& v, const std::string& name) {
+  if (!v.is_array() || v.size() != 3) bad(name, "must be [x, y, z]");
+  return Point(finite(v[0], name), finite(v[1], name), finite(v[2], name));
+}
+
+std::vector<Point> points_of(const json& j, const char* name) {
+  const json& v = field(j, name);
+  if (!v.is_array()) bad(name, "must be a list of [x, y, z]");
+  std::vector<Point> out;
+  out.reserve(v.size());
+  for (std::size_t k = 0; k < v.size(); ++k)
+    out.push_back(point_of(v[k], std::string(name) + "[" + std::to_string(k) + "]"));
+  return out;
+}
+
+const char* search_name(CountSearch s) {
+  switch (s) {
+    case CountSearch::kLinear:
+      return "linear";
+    case CountSearch::kKnown:
+      return "known";
+    case CountSearch::kFast:
+      break;
+  }
+  return "fast";
+}
+
+void check_keys(const json& j, std::initializer_list<const char*> keys) {
+  for (const auto& [k, v] : j.items()) {
+    bool known = false;
+    for (const char* name : keys) known = known || k == name;
+    if (!known) bad(k, "unknown field");
+  }
+}
+
+// Per-point fraction of T used (max over the axes; at T = 0, of the round-off allowance).
+json point_deviations(const FitResult& fit, const Rows& rows) {
+  const Point t = fit.report.tolerance;
+  const double floor = std::max(fit.report.roundoff, std::numeric_limits<double>::min());
+  json out = json::array();
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    json row = json::array();
+    const std::size_t first = rows.offsets()[j];
+    const auto pts = rows[j];
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const Point d = (fit.surface.evaluate(fit.u[first + k], fit.v[j]) - pts[k]).cwiseAbs();
+      double r = 0;
+      for (int a = 0; a < 3; ++a) r = std::max(r, d[a] / std::max(t[a], floor));
+      row.push_back(r);
+    }
+    out.push_back(std::move(row));
+  }
+  return out;
+}
+
+}  // namespace
+
+json error_json(const Error& e) {
+  json place = json::object();
+  const Place& p = e.place();
+  if (!p.file.empty()) place["file"] = p.file;
+  if (p.line >= 0) place["line"] = p.line;
+  if (p.row >= 0) place["row"] = p.row;
+  if (p.point >= 0) place["index"] = p.point;
+  if (!p.option.empty()) place["field"] = p.option;
+  return json{{"error", format_error_line(p, e.message())},
+              {"code", to_string(e.code())},
+              {"place", place}};
+}
+
+json parse_body(const std::string& body) {
+  json j = json::parse(body, nullptr, false);
+  if (j.is_discarded()) bad("body", "is not valid JSON");
+  if (!j.is_object()) bad("body", "must be a JSON object");
+  return j;
+}
+
+json options_json(const FitOptions& o) {
+  return json{{"tolerance", point_json(o.tolerance)},
+              {"degree", {o.degree_u, o.degree_v}},
+              {"closed", {o.closed_u, o.closed_v}},
+              {"search", search_name(o.search)},
+              {"parameters", std::string(to_string(o.parametrization))}};
+}
+
+FitOptions options_from_json(const json& r, const FitOptions& current) {
+  check_keys(r, {"tolerance", "degree", "closed", "search", "parameters", "phase"});
+  FitOptions o = current;
+  if (r.contains("tolerance")) {
+    const json& t = r["tolerance"];
+    o.tolerance = t.is_array() ? point_of(t, "tolerance") : Point::Constant(finite(t, "tolerance"));
+  }
+  if (r.contains("degree")) {
+    const json& d = r["degree"];
+    if (!d.is_array() || d.size() != 2 || !d[0].is_number_integer() || !d[1].is_number_integer())
+      bad("degree", "must be [p, q], two whole numbers");
+    o.degree_u = static_cast<int>(std::clamp<long long>(d[0].get<long long>(), -1, 1000));
+    o.degree_v = static_cast<int>(std::clamp<long long>(d[1].get<long long>(), -1, 1000));
+  }
+  if (r.contains("closed")) {
+    const json& c = r["closed"];
+    if (!c.is_array() || c.size() != 2 || !c[0].is_boolean() || !c[1].is_boolean())
+      bad("closed", "must be [u, v], two booleans");
+    o.closed_u = c[0].get<bool>();
+    o.closed_v = c[1].get<bool>();
+  }
+  if (r.contains("search")) {
+    const json& s = r["search"];
+    if (s == "fast")
+      o.search = CountSearch::kFast;
+    else if (s == "linear")
+      o.search = CountSearch::kLinear;
+    else
+      bad("search", "must be \"fast\" or \"linear\", got " + s.dump());
+  }
+  if (r.contains("parameters")) {
+    const json& p = r["parameters"];
+    if (!p.is_string() || !parse_parametrization(p.get<std::string>(), o.parametrization))
+      bad("parameters", "unknown rule " + p.dump());
+  }
+  o.row_count_hints.clear();
+  o.column_count_hints.clear();
+  return o;
+}
+
+MovePhase phase_of(const json& r) {
+  if (!r.contains("phase")) return MovePhase::kOnce;
+  const json& p = r["phase"];
+  if (p == "drag") return MovePhase::kDrag;
+  if (p == "rest") return MovePhase::kRest;
+  if (p == "end") return MovePhase::kEnd;
+  if (p != "once") bad("phase", "must be \"drag\", \"rest\", \"end\" or \"once\"");
+  return MovePhase::kOnce;
+}
+
+void apply_edit(Session& s, const json& r) {
+  const json& op = field(r, "op");
+  if (!op.is_string()) bad("op", "must be a string");
+  const std::string name = op.get<std::string>();
+  if (name == "move") {
+    check_keys(r, {"op", "row", "index", "to", "phase", "seq"});
+    s.move(index_of(r, "row"), index_of(r, "index"), point_of(field(r, "to"), "to"), phase_of(r));
+  } else if (name == "insert") {
+    check_keys(r, {"op", "row", "index", "point"});
+    s.insert_point(index_of(r, "row"), index_of(r, "index"), point_of(field(r, "point"), "point"));
+  } else if (name == "delete") {
+    check_keys(r, {"op", "row", "index"});
+    s.delete_point(index_of(r, "row"), index_of(r, "index"));
+  } else if (name == "insert_row") {
+    check_keys(r, {"op", "row", "points"});
+    s.insert_row(index_of(r, "row"), points_of(r, "points"));
+  } else if (name == "delete_row") {
+    check_keys(r, {"op", "row"});
+    s.delete_row(index_of(r, "row"));
+  } else if (name == "replace_row") {
+    check_keys(r, {"op", "row", "points"});
+    s.replace_row(index_of(r, "row"), points_of(r, "points"));
+  } else {
+    bad("op", "unknown operation " + op.dump() +
+                  " (move, insert, delete, insert_row, delete_row, replace_row)");
+  }
+}
+
+json state_json(const Session& s, bool with_rows) {
+  const FitResult& fit = s.shown();
+  const Rows& rows = s.shown_rows();
+  const FitReport& r = fit.report;
+  double used = 0;
+  for (int a = 0; a < 3; ++a)
+    used = std::max(used, r.tolerance[a] > 0 ? r.max_deviation[a] / r.tolerance[a]
+                                             : (r.max_deviation[a] > r.roundoff ? HUGE_VAL : 0));
+  json j;
+  j["version"] = s.version();
+  j["final"] = s.final();
+  j["dragging"] = s.dragging();
+  j["checked"] = r.points == rows.total_points();
+  j["surface"] = io::surface_to_json(fit.surface);
+  j["report"] = io::report_to_json(r);
+  j["deviation"] = {{"max", point_json(r.max_deviation)},
+                    {"tolerance", point_json(r.tolerance)},
+                    {"used", std::isfinite(used) ? json(used) : json(nullptr)},
+                    {"within", r.within_tolerance}};
+  j["options"] = options_json(s.options());
+  j["undo"] = s.undo_depth();
+  j["redo"] = s.redo_depth();
+  j["rows_refitted"] = s.rows_refitted();
+  j["points"] = rows.total_points();
+  if (with_rows) {
+    json rj = json::array();
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      json row = json::array();
+      for (const Point& p : rows[k]) row.push_back(point_json(p));
+      rj.push_back(std::move(row));
+    }
+    j["rows"] = std::move(rj);
+    j["point_deviation"] = point_deviations(fit, rows);
+    json u = json::array();
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      u.push_back(
+          std::vector<double>(fit.u.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[k]),
+                              fit.u.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[k + 1])));
+    j["u"] = std::move(u);
+    j["v"] = fit.v;
+  }
+  return j;
+}
+
+}  // namespace sfit::server

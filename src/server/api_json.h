@@ -1,0 +1,37 @@
+// The JSON of the editor's API (docs/editor.md): the state it returns and the requests it
+// reads. A malformed request throws Error(kUsage) naming the field and what is wrong.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "session.h"
+#include "sfit/error.h"
+
+namespace sfit::server {
+
+/// The state: rows (optional, they are the bulk), surface (the JSON surface contract), report,
+/// whether the surface is final, the deviation against T, options, undo and redo depths.
+nlohmann::json state_json(const Session& session, bool with_rows);
+
+/// The fit options as the API shows and takes them.
+nlohmann::json options_json(const FitOptions& o);
+/// `current` with the fields of `request` changed ({"tolerance": T | [Tx, Ty, Tz],
+/// "degree": [p, q], "closed": [u, v], "search": "fast" | "linear", "parameters": name});
+/// the library checks the values when it fits. ("phase" is read by phase_of().)
+FitOptions options_from_json(const nlohmann::json& request, const FitOptions& current);
+
+/// The "phase" of a request: "once" (absent), "drag", "rest", "end".
+MovePhase phase_of(const nlohmann::json& request);
+
+/// Applies one POST /api/edit request to `session`.
+void apply_edit(Session& session, const nlohmann::json& request);
+
+/// Parses a request body: an object, or Error(kUsage) saying why not.
+nlohmann::json parse_body(const std::string& body);
+
+/// An Error as the API's error object {"error", "code", "place"}.
+nlohmann::json error_json(const Error& e);
+
+}  // namespace sfit::server

@@ -1,0 +1,14 @@
+// The options of the quick refit that follows a drag (METHOD.md 7.8: a quick image first,
+// refined when the hand rests). One function, so the quick method can change in one place.
+#pragma once
+
+#include "sfit/surface_fit.h"
+
+namespace sfit::server {
+
+/// Options for refitting at the counts of `last` (the last full fit's report): the search
+/// takes the row and column counts as the answer (one solve per curve; a count that does
+/// not hold is searched as kFast), with the parameter rule that fit chose.
+FitOptions quick_refit_options(const FitOptions& full, const FitReport& last);
+
+}  // namespace sfit::server

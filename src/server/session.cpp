@@ -1,0 +1,244 @@
+#include "session.h"
+
+#include <string>
+
+#include "quick_refit.h"
+#include "sfit/error.h"
+
+namespace sfit::server {
+namespace {
+
+[[noreturn]] void no_such(const std::string& what, std::size_t row, long index = -1) {
+  throw Error(ErrorCode::kUsage, what, Place{.row = static_cast<long>(row), .point = index});
+}
+
+// `rows` with row `row` removed (erase) or `points` inserted before it.
+Rows edited_rows(const Rows& rows, std::size_t row, const std::vector<Point>* insert) {
+  Rows out;
+  out.reserve(rows.total_points() + (insert ? insert->size() : 0), rows.size() + 1);
+  for (std::size_t j = 0; j <= rows.size(); ++j) {
+    if (j == row && insert) out.add_row(*insert);
+    if (j < rows.size() && (j != row || insert)) out.add_row(rows[j]);
+  }
+  return out;
+}
+
+}  // namespace
+
+Session::Session(Rows rows, FitOptions options)
+    : options_(std::move(options)),
+      fit_(std::make_unique<IncrementalFit>(std::move(rows), options_)) {
+  rows_refitted_ = fit_->rows_refitted();
+}
+
+Session::~Session() = default;
+
+const FitResult& Session::shown() const {
+  return drag_ && !drag_->final ? drag_->quick->result() : fit_->result();
+}
+
+const Rows& Session::shown_rows() const {
+  return drag_ && !drag_->final ? drag_->quick->rows() : fit_->rows();
+}
+
+std::vector<Point> Session::row_points(std::size_t row) const {
+  const auto r = fit_->rows()[row];
+  return {r.begin(), r.end()};
+}
+
+void Session::commit(Change c) {
+  if (!undo_.empty()) undo_.back().open = false;
+  undo_.push_back(std::move(c));
+  if (undo_.size() > kMaxUndo) undo_.pop_front();
+  redo_.clear();
+  ++version_;
+}
+
+void Session::move(std::size_t row, std::size_t index, const Point& to, MovePhase phase) {
+  if (drag_ && (drag_->row != row || drag_->index != index)) finish_drag();
+  const Rows& rows = fit_->rows();
+  if (row >= rows.size() || index >= rows[row].size()) no_such("no such point to move", row, index);
+  if (phase == MovePhase::kOnce) {
+    std::vector<Point> before = row_points(row);
+    fit_->move_point(row, index, to);
+    rows_refitted_ = fit_->rows_refitted();
+    commit(Change{.kind = Change::Kind::kRow,
+                  .row = row,
+                  .before = std::move(before),
+                  .after = row_points(row)});
+    return;
+  }
+  if (!drag_) {
+    Drag d;
+    d.row = row;
+    d.index = index;
+    d.before = row_points(row);
+    d.quick = std::make_unique<IncrementalFit>(
+        fit_->rows(), quick_refit_options(options_, fit_->result().report));
+    drag_ = std::move(d);
+  }
+  Drag& d = *drag_;
+  if (phase == MovePhase::kDrag) {
+    d.quick->move_point(row, index, to);
+    rows_refitted_ = d.quick->rows_refitted();
+    d.final = false;
+    ++version_;
+    return;
+  }
+  // kRest and kEnd: the full fit at the hand's position (the quick state follows it too).
+  if (fit_->rows()[row][index] != to) {
+    fit_->move_point(row, index, to);
+    rows_refitted_ = fit_->rows_refitted();
+  }
+  if (d.quick->rows()[row][index] != to) d.quick->move_point(row, index, to);
+  d.final = true;
+  ++version_;
+  if (phase == MovePhase::kEnd) finish_drag();
+}
+
+void Session::finish_drag() {
+  if (!drag_) return;
+  Drag d = std::move(*drag_);
+  drag_.reset();
+  const Point to = d.quick->rows()[d.row][d.index];
+  if (fit_->rows()[d.row][d.index] != to) {
+    try {
+      fit_->move_point(d.row, d.index, to);
+      rows_refitted_ = fit_->rows_refitted();
+    } catch (...) {
+      // The full fit refuses where the quick one took it: the drag is dropped.
+      if (row_points(d.row) != d.before) fit_->replace_row(d.row, d.before);
+      ++version_;
+      throw;
+    }
+  }
+  std::vector<Point> after = row_points(d.row);
+  if (after == d.before) {
+    ++version_;
+    return;
+  }
+  commit(Change{.kind = Change::Kind::kRow,
+                .row = d.row,
+                .before = std::move(d.before),
+                .after = std::move(after)});
+}
+
+void Session::insert_point(std::size_t row, std::size_t index, const Point& p) {
+  finish_drag();
+  if (row >= rows().size()) no_such("no such row to insert a point in", row);
+  std::vector<Point> before = row_points(row);
+  fit_->insert_point(row, index, p);
+  rows_refitted_ = fit_->rows_refitted();
+  commit(Change{.kind = Change::Kind::kRow,
+                .row = row,
+                .before = std::move(before),
+                .after = row_points(row)});
+}
+
+void Session::delete_point(std::size_t row, std::size_t index) {
+  finish_drag();
+  if (row >= rows().size()) no_such("no such row to delete a point from", row);
+  std::vector<Point> before = row_points(row);
+  fit_->erase_point(row, index);
+  rows_refitted_ = fit_->rows_refitted();
+  commit(Change{.kind = Change::Kind::kRow,
+                .row = row,
+                .before = std::move(before),
+                .after = row_points(row)});
+}
+
+void Session::replace_row(std::size_t row, std::vector<Point> points) {
+  finish_drag();
+  if (row >= rows().size()) no_such("no such row to replace", row);
+  Change c{.kind = Change::Kind::kRow,
+           .row = row,
+           .before = row_points(row),
+           .after = std::move(points)};
+  apply(c, true);
+  commit(std::move(c));
+}
+
+void Session::insert_row(std::size_t row, std::vector<Point> points) {
+  finish_drag();
+  if (row > rows().size()) no_such("no such place to insert a row", row);
+  if (points.empty()) no_such("a row needs at least one point", row);
+  Change c{.kind = Change::Kind::kInsertRow, .row = row, .after = std::move(points)};
+  apply(c, true);
+  commit(std::move(c));
+}
+
+void Session::delete_row(std::size_t row) {
+  finish_drag();
+  if (row >= rows().size()) no_such("no such row to delete", row);
+  Change c{.kind = Change::Kind::kDeleteRow, .row = row, .before = row_points(row)};
+  apply(c, true);
+  commit(std::move(c));
+}
+
+void Session::set_options(const FitOptions& options, MovePhase phase) {
+  finish_drag();
+  const bool live = phase == MovePhase::kDrag || phase == MovePhase::kRest;
+  Change c{.kind = Change::Kind::kOptions, .options_before = options_, .options_after = options};
+  apply(c, true);
+  if (!undo_.empty() && undo_.back().kind == Change::Kind::kOptions && undo_.back().open &&
+      redo_.empty()) {
+    undo_.back().options_after = options;  // the same slider movement
+    undo_.back().open = live;
+    ++version_;
+    return;
+  }
+  c.open = live;
+  commit(std::move(c));
+}
+
+// Applies `c` (forward) or its inverse; the state changes only if the refit succeeds.
+void Session::apply(const Change& c, bool forward) {
+  using K = Change::Kind;
+  switch (c.kind) {
+    case K::kRow:
+      fit_->replace_row(c.row, forward ? c.after : c.before);
+      rows_refitted_ = fit_->rows_refitted();
+      return;
+    case K::kInsertRow:
+    case K::kDeleteRow: {
+      const bool insert = (c.kind == K::kInsertRow) == forward;
+      const std::vector<Point>& points = c.kind == K::kInsertRow ? c.after : c.before;
+      auto next = std::make_unique<IncrementalFit>(
+          edited_rows(fit_->rows(), c.row, insert ? &points : nullptr), options_);
+      fit_ = std::move(next);
+      rows_refitted_ = fit_->rows_refitted();
+      return;
+    }
+    case K::kOptions: {
+      const FitOptions& o = forward ? c.options_after : c.options_before;
+      auto next = std::make_unique<IncrementalFit>(fit_->rows(), o);
+      fit_ = std::move(next);
+      options_ = o;
+      rows_refitted_ = fit_->rows_refitted();
+      return;
+    }
+  }
+}
+
+bool Session::undo() {
+  finish_drag();
+  if (undo_.empty()) return false;
+  undo_.back().open = false;
+  apply(undo_.back(), false);
+  redo_.push_back(std::move(undo_.back()));
+  undo_.pop_back();
+  ++version_;
+  return true;
+}
+
+bool Session::redo() {
+  finish_drag();
+  if (redo_.empty()) return false;
+  apply(redo_.back(), true);
+  undo_.push_back(std::move(redo_.back()));
+  redo_.pop_back();
+  ++version_;
+  return true;
+}
+
+}  // namespace sfit::server

@@ -1,0 +1,97 @@
+// The editor's state: the rows, the fit that follows their edits (IncrementalFit), the
+// quick refit of a drag, and undo/redo. Not thread-safe: the server serialises requests.
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "sfit/incremental.h"
+#include "sfit/rows.h"
+#include "sfit/surface_fit.h"
+
+namespace sfit::server {
+
+/// One undoable step: what it changed and what it replaced.
+struct Change {
+  enum class Kind { kRow, kInsertRow, kDeleteRow, kOptions };
+  Kind kind = Kind::kRow;
+  std::size_t row = 0;
+  std::vector<Point> before, after;  ///< the row's points (kRow), the row (kInsert/kDeleteRow)
+  FitOptions options_before, options_after;  ///< kOptions
+  bool open = false;  ///< kOptions from a live control (a slider) that is still moving
+};
+
+/// Where a move stands in a drag.
+enum class MovePhase {
+  kOnce,  ///< a whole edit (typed coordinates, a script): full refit, one undo step
+  kDrag,  ///< the hand moves: quick refit at the current counts, not final
+  kRest,  ///< the hand rests: full refit of the current position; the drag goes on
+  kEnd,   ///< the hand lets go: full refit; the whole drag is one undo step
+};
+
+class Session {
+ public:
+  /// Undo keeps at most this many steps (the oldest are dropped).
+  static constexpr std::size_t kMaxUndo = 1000;
+
+  /// Fits `rows` (Error as fit_surface() throws).
+  Session(Rows rows, FitOptions options);
+  ~Session();
+
+  // Edits: each throws Error (kUsage for a place that does not exist, kInputData for data
+  // the fit refuses) and leaves the state as it was.
+  void move(std::size_t row, std::size_t index, const Point& to, MovePhase phase);
+  void insert_point(std::size_t row, std::size_t index, const Point& p);
+  void delete_point(std::size_t row, std::size_t index);
+  void insert_row(std::size_t row, std::vector<Point> points);  ///< before `row` (M appends)
+  void delete_row(std::size_t row);
+  void replace_row(std::size_t row, std::vector<Point> points);
+  /// New fit options (a full fit). kDrag: a live control moves (the T slider); consecutive
+  /// kDrag changes and the kEnd that closes them are one undo step.
+  void set_options(const FitOptions& options, MovePhase phase = MovePhase::kOnce);
+  bool undo();  ///< false: nothing to undo
+  bool redo();
+  /// Ends an open drag where it is (full refit, one undo step); nothing without one.
+  void finish_drag();
+
+  /// What the page shows: the quick refit during a drag, else the full fit.
+  const FitResult& shown() const;
+  const Rows& shown_rows() const;
+  /// True when shown() is the full fit (the fewest control points) of the current rows.
+  bool final() const { return !drag_ || drag_->final; }
+  bool dragging() const { return drag_.has_value(); }
+  /// The full fit and its rows (during a drag: as of its start or last rest).
+  const FitResult& result() const { return fit_->result(); }
+  const Rows& rows() const { return fit_->rows(); }
+  const FitOptions& options() const { return options_; }
+  std::size_t undo_depth() const { return undo_.size(); }
+  std::size_t redo_depth() const { return redo_.size(); }
+  /// Counts every change of the shown surface.
+  long version() const { return version_; }
+  /// Rows whose curve stage the last refit redid (rows().size() for a full fit).
+  std::size_t rows_refitted() const { return rows_refitted_; }
+
+ private:
+  struct Drag {
+    std::size_t row = 0, index = 0;
+    std::vector<Point> before;  // the row at the start of the drag
+    std::unique_ptr<IncrementalFit> quick;
+    bool final = false;  // the last step was a rest: fit_ is at the current position
+  };
+  void apply(const Change& c, bool forward);
+  void commit(Change c);
+  std::vector<Point> row_points(std::size_t row) const;
+
+  FitOptions options_;
+  std::unique_ptr<IncrementalFit> fit_;
+  std::optional<Drag> drag_;
+  std::deque<Change> undo_, redo_;
+  long version_ = 0;
+  std::size_t rows_refitted_ = 0;
+};
+
+}  // namespace sfit::server

@@ -1,0 +1,171 @@
+// The editor's session (src/server/session.*): drags refit at the current counts and end in
+// the full fit, a whole drag is one undo step, undo and redo give the earlier fits bit for bit,
+// a refused edit changes nothing.
+#include "session.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "quick_refit.h"
+#include "sfit/error.h"
+#include "test_support.h"
+
+namespace sfit::server {
+namespace {
+
+struct Data {
+  Rows rows;
+  FitOptions options;
+};
+
+Data ship() {
+  Data d{test::load_rows(test::example("ship_px121_stations.rows")), {}};
+  d.options.tolerance = relative_tolerance(d.rows, 1e-3);
+  return d;
+}
+
+std::vector<Point> row_of(const Rows& rows, std::size_t j) {
+  return {rows[j].begin(), rows[j].end()};
+}
+
+TEST(QuickRefitOptions, TakeTheLastCountsAndTheRuleThatFitChose) {
+  Data d = ship();
+  d.options.parametrization = Parametrization::kFewest;
+  const FitResult full = fit_surface(d.rows, d.options);
+  const FitOptions q = quick_refit_options(d.options, full.report);
+  EXPECT_EQ(q.search, CountSearch::kKnown);
+  EXPECT_EQ(q.row_count_hints, full.report.row_counts);
+  EXPECT_EQ(q.column_count_hints, full.report.column_counts);
+  EXPECT_EQ(q.parametrization, full.report.parametrization);
+  EXPECT_NE(q.parametrization, Parametrization::kFewest);
+  EXPECT_EQ(q.tolerance, d.options.tolerance);
+  // At unchanged data the quick refit is the full fit's surface.
+  test::expect_same_surface(fit_surface(d.rows, q), full);
+}
+
+TEST(Session, ADragRefitsQuicklyThenFullyAndIsOneUndoStep) {
+  const Data d = ship();
+  Session s(d.rows, d.options);
+  const FitResult initial = s.result();
+  const Point p = d.rows[5][4];
+  const int nu = initial.report.count_u, nv = initial.report.count_v;
+  for (int k = 1; k <= 5; ++k) {
+    s.move(5, 4, p + Point(0, 0.05 * k, -0.04 * k), MovePhase::kDrag);
+    EXPECT_FALSE(s.final());
+    EXPECT_TRUE(s.dragging());
+    EXPECT_TRUE(s.shown().report.within_tolerance);
+    EXPECT_EQ(s.shown().report.points, d.rows.total_points());  // every point checked
+    EXPECT_EQ(s.shown_rows()[5][4], p + Point(0, 0.05 * k, -0.04 * k));
+    // The quick refit keeps the counts where they still hold (they do for these small moves).
+    EXPECT_EQ(s.shown().report.count_u, nu);
+    EXPECT_EQ(s.shown().report.count_v, nv);
+    EXPECT_EQ(s.undo_depth(), 0u);
+  }
+  const Point end = p + Point(0, 0.3, -0.25);
+  s.move(5, 4, end, MovePhase::kRest);
+  EXPECT_TRUE(s.final());
+  EXPECT_TRUE(s.dragging());
+  s.move(5, 4, end, MovePhase::kEnd);
+  EXPECT_FALSE(s.dragging());
+  EXPECT_EQ(s.undo_depth(), 1u);
+  // The final surface is exactly the full fit of the edited rows.
+  Rows edited;
+  for (std::size_t j = 0; j < d.rows.size(); ++j) {
+    auto r = row_of(d.rows, j);
+    if (j == 5) r[4] = end;
+    edited.add_row(r);
+  }
+  test::expect_same_surface(s.shown(), fit_surface(edited, d.options));
+  ASSERT_TRUE(s.undo());
+  test::expect_same_surface(s.shown(), initial);
+  EXPECT_EQ(s.redo_depth(), 1u);
+  ASSERT_TRUE(s.redo());
+  test::expect_same_surface(s.shown(), fit_surface(edited, d.options));
+}
+
+TEST(Session, UndoAndRedoOverMoreThanAHundredStepsOfEveryKind) {
+  const Data d = ship();
+  Session s(d.rows, d.options);
+  std::vector<FitResult> history{s.result()};
+  const Point p = d.rows[3][2];
+  for (int k = 1; k <= 120; ++k) {
+    switch (k % 6) {
+      case 0:
+        s.insert_point(2, 1, (d.rows[2][1] + d.rows[2][2]) / 2);
+        break;
+      case 1:
+        s.delete_point(2, 1);
+        break;
+      case 2:
+        s.insert_row(s.rows().size(), row_of(d.rows, 10));
+        break;
+      case 3:
+        s.delete_row(s.rows().size() - 1);
+        break;
+      case 4: {
+        FitOptions o = s.options();
+        o.degree_u = o.degree_u == 3 ? 2 : 3;
+        s.set_options(o);
+        break;
+      }
+      default:
+        s.move(3, 2, p + Point(0, 0.002 * k, 0), MovePhase::kOnce);
+    }
+    history.push_back(s.result());
+  }
+  EXPECT_EQ(s.undo_depth(), 120u);
+  for (int k = 119; k >= 0; --k) {
+    ASSERT_TRUE(s.undo());
+    test::expect_same_surface(s.result(), history[k]);
+  }
+  EXPECT_FALSE(s.undo());
+  for (int k = 1; k <= 120; ++k) {
+    ASSERT_TRUE(s.redo());
+    test::expect_same_surface(s.result(), history[k]);
+  }
+}
+
+TEST(Session, OneMovementOfALiveSliderIsOneUndoStep) {
+  const Data d = ship();
+  Session s(d.rows, d.options);
+  const FitResult initial = s.result();
+  FitOptions o = d.options;
+  for (int k = 1; k <= 5; ++k) {
+    o.tolerance = d.options.tolerance * (1 + 0.2 * k);
+    s.set_options(o, MovePhase::kDrag);
+    EXPECT_EQ(s.undo_depth(), 1u);
+  }
+  s.set_options(o, MovePhase::kEnd);
+  EXPECT_EQ(s.undo_depth(), 1u);
+  test::expect_same_surface(s.result(), fit_surface(d.rows, o));
+  s.set_options(d.options, MovePhase::kDrag);  // a new movement: a new step
+  EXPECT_EQ(s.undo_depth(), 2u);
+  ASSERT_TRUE(s.undo());
+  ASSERT_TRUE(s.undo());
+  test::expect_same_surface(s.result(), initial);
+  EXPECT_EQ(s.options().tolerance, d.options.tolerance);
+}
+
+TEST(Session, ARefusedEditChangesNothing) {
+  const Data d = ship();
+  Session s(d.rows, d.options);
+  const FitResult initial = s.result();
+  const long version = s.version();
+  EXPECT_THROW(s.move(99, 0, Point::Zero(), MovePhase::kOnce), Error);
+  EXPECT_THROW(s.move(1, 99, Point::Zero(), MovePhase::kDrag), Error);
+  EXPECT_THROW(s.move(1, 0, Point(NAN, 0, 0), MovePhase::kOnce), Error);
+  EXPECT_THROW(s.delete_row(11), Error);
+  EXPECT_THROW(s.insert_row(0, {}), Error);
+  FitOptions bad = d.options;
+  bad.degree_u = 0;
+  EXPECT_THROW(s.set_options(bad), Error);
+  EXPECT_EQ(s.version(), version);
+  EXPECT_EQ(s.undo_depth(), 0u);
+  EXPECT_FALSE(s.dragging());
+  test::expect_same_surface(s.result(), initial);
+  EXPECT_EQ(s.rows().points(), d.rows.points());
+}
+
+}  // namespace
+}  // namespace sfit::server
