@@ -1,5 +1,6 @@
-// The options of the quick refit that follows a drag (METHOD.md 7.8: a quick image first,
-// refined when the hand rests). One function, so the quick method can change in one place.
+// The options of the quick refit that follows a drag (docs/method.md, "Editing the data": a quick
+// image first, refined when the hand rests). One function, so the quick method can change in one
+// place.
 #pragma once
 
 #include "sfit/surface_fit.h"
