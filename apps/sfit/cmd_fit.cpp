@@ -30,7 +30,8 @@ struct FitArgs {
   std::optional<double> tol_rel;
   std::string closed;
   std::string search = "fast";
-  std::string parameters = "paper";
+  std::string parameters = "auto";
+  std::string method = "surface", norm = "auto";
   int threads = 0;
   bool quiet = false;
   bool mesh = false;
@@ -92,6 +93,12 @@ int run_fit(const FitArgs& a) {
                 Place{.option = "--closed"});
   o.search = a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast;
   parse_parametrization(a.parameters, o.parametrization);  // checked by CLI11
+  if (!parse_fit_method(a.method, o.method))
+    throw Error(ErrorCode::kUsage, "'" + a.method + "' is not a method (surface, sfit01)",
+                Place{.option = "--method"});
+  if (!parse_fit_norm(a.norm, o.norm))
+    throw Error(ErrorCode::kUsage, "'" + a.norm + "' is not a norm (l2, linf, auto)",
+                Place{.option = "--norm"});
   o.threads = a.threads;
   if (a.tol && a.tol_rel)
     throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both",
@@ -154,10 +161,14 @@ int run_fit(const FitArgs& a) {
   say(fmt::format(
       "surface {} x {} control points (rows need {}..{}, columns {}..{}); {} parameters", r.count_u,
       r.count_v, *rmin, *rmax, *cmin, *cmax, to_string(r.parametrization)));
-  if (o.parametrization == Parametrization::kFewest)
+  if (r.method == FitMethod::kSurface || o.method == FitMethod::kSurface)
+    say(fmt::format("method {} ({} norm, {} pairs tried): {}", to_string(r.method),
+                    to_string(r.norm), r.pairs_tried, r.stop_reason));
+  if (o.parametrization == Parametrization::kFewest ||
+      (o.parametrization == Parametrization::kAuto && o.method == FitMethod::kSurface))
     say(fmt::format("{} parameters gave the fewest control points of the four rules",
                     to_string(r.parametrization)));
-  else if (r.parametrization != o.parametrization)
+  else if (o.parametrization != Parametrization::kAuto && r.parametrization != o.parametrization)
     say(fmt::format("note: {} parameters could not hold the tolerance here; the paper's did",
                     to_string(o.parametrization)));
   double used = 0;
@@ -218,9 +229,16 @@ void add_fit_command(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"fast", "linear"}));
   c->add_option("--parameters", args->parameters,
                 "how points get parameters, along and across the rows: paper (SFIT01's, by the "
-                "point's index; default), uniform (index), chord (chord length), centripetal, or "
-                "fewest (tries the four, keeps the fewest control points)")
-      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest"}));
+                "point's index), uniform (index), chord (chord length), centripetal, fewest "
+                "(tries the four, keeps the fewest control points), or auto (default: the "
+                "four with --method surface, paper with --method sfit01)")
+      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest", "auto"}));
+  c->add_option("--method", args->method,
+                "surface (default: the fewest nu x nv whose surface holds T, searched over all "
+                "points at once; never more than sfit01) or sfit01 (the paper's two stages)");
+  c->add_option("--norm", args->norm,
+                "with --method surface: l2 (least squares), linf (minimax), auto (default: "
+                "least squares, minimax where it misses T by a little)");
   c->add_option("--threads", args->threads, "threads (0: all cores); results do not depend on it")
       ->check(CLI::Range(0, 4096));
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");

@@ -1,0 +1,307 @@
+// FitMethod::kSurface (docs/control-points.md): the tensor-product fit over all points at once
+// (tensor_lsq.h, minimax.h), searched for the fewest nu x nv that hold (pair_search.h), in the
+// frame (fit_frame.h): validated once, centred, every candidate checked at every data point
+// at the full T per axis and guarded between the points; never more control points than the
+// two-stage method (FitMethod::kSfit01), whose fit it starts from.
+#include <algorithm>
+#include <climits>
+#include <optional>
+#include <string>
+
+#include "fit_frame.h"
+#include "minimax.h"
+#include "pair_search.h"
+#include "parallel.h"
+#include "sfit/deviation.h"
+#include "sfit/error.h"
+#include "surface_fitter.h"
+#include "tensor_lsq.h"
+
+namespace sfit::detail {
+
+namespace {
+
+// Minimax where least squares misses T by at most this factor (FitNorm::kAuto): the minimax
+// error at a pair is at least the least-squares one divided by sqrt(points), in practice
+// within 10-40 % of it on smooth data (docs/control-points.md measures it).
+constexpr double kLinfReach = 1.5;
+
+// Pairs whose solve would cost more flops than this are not tried (they count as not
+// holding; the report says how many): the sparse factorisation grows as unknowns x band^2,
+// and a pair that size is far from the fewest control points anyway wherever the two-stage
+// bound leaves room (at 10^6 points, 2 % of them as control points cost ~4e9).
+constexpr double kSolveBudget = 4e9;
+
+// The frame's state for one fit: centred rows, their box, round-off, threads.
+struct Frame {
+  int threads = 1;
+  BoundingBox box, centred_box;
+  Point centre = Point::Zero();
+  double roundoff = 0;
+  Rows centred;
+  Point tolerance = Point::Zero();
+
+  Frame(const Rows& rows, const FitOptions& o) : tolerance(o.tolerance) {
+    threads = threads_for(rows, o.threads);
+    box = box_of(rows, threads);
+    centre = 0.5 * (box.min + box.max);
+    centred_box = BoundingBox{box.min - centre, box.max - centre};
+    roundoff = kRoundoffRelative * box.diagonal();
+    centred = rows;
+    parallel_for(rows.size(), threads, [&](std::size_t j) {
+      for (Point& p : centred.mutable_row(j)) p -= centre;
+    });
+  }
+  // Whether a candidate (centred) holds: every point within T, every guard passed.
+  PairVerdict judge(const Surface& s, std::span<const double> u, std::span<const double> v,
+                    DeviationCheck* out = nullptr) const {
+    const DeviationCheck c = check_deviation(s, centred, u, v, tolerance, roundoff, threads);
+    if (out) *out = c;
+    return {c.within && !failed_guard(s, centred_box), c.worst_ratio};
+  }
+};
+
+// A surface the search made: its rule, norm and where the search stopped.
+struct Candidate {
+  Parametrization rule = Parametrization::kUniform;
+  FitNorm norm = FitNorm::kL2;
+  int nu = 0, nv = 0;
+  std::string stop;
+};
+
+std::vector<Parametrization> rules_of(Parametrization p) {
+  if (p == Parametrization::kAuto || p == Parametrization::kFewest)
+    return {Parametrization::kUniform, Parametrization::kChord, Parametrization::kCentripetal,
+            Parametrization::kPaper};
+  return {p};
+}
+
+TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads) {
+  return TensorSpec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, rule, threads};
+}
+
+// The surface at one pair by one norm (centred), or nullopt where none was made.
+std::optional<Surface> solve_pair(TensorProblem& prob, FitNorm norm, int nu, int nv,
+                                  const Point& tolerance) {
+  Surface s;
+  if (!prob.solve(nu, nv, s)) return std::nullopt;
+  if (norm == FitNorm::kLinf) {
+    if (!minimax_refine(prob.rows(), prob.u_at(nu), prob.v_at(nv), tolerance, s))
+      return std::nullopt;
+  }
+  return s;
+}
+
+FitResult assemble(const Frame& fr, Surface s, std::vector<double> u, std::vector<double> v,
+                   const DeviationCheck& c, const FitOptions& o) {
+  FitResult out;
+  for (Point& p : s.control) p += fr.centre;
+  out.surface = std::move(s);
+  out.u = std::move(u);
+  out.v = std::move(v);
+  FitReport& r = out.report;
+  r.points = fr.centred.total_points();
+  r.rows = fr.centred.size();
+  r.tolerance = o.tolerance;
+  r.max_deviation = c.max_deviation;
+  r.worst_row = c.worst_row;
+  r.worst_index = c.worst_index;
+  r.worst_deviation = c.worst_deviation;
+  r.within_tolerance = c.within;
+  r.count_u = out.surface.count_u;
+  r.count_v = out.surface.count_v;
+  r.degree_u = o.degree_u;
+  r.degree_v = o.degree_v;
+  r.closed_u = o.closed_u;
+  r.closed_v = o.closed_v;
+  r.roundoff = fr.roundoff;
+  r.method = FitMethod::kSurface;
+  return out;
+}
+
+void check_counts(const FitOptions& o) {
+  const auto& c = *o.counts;
+  const int lo[2] = {o.degree_u + 1, o.degree_v + 1};
+  for (int a = 0; a < 2; ++a)
+    if (c[a] < lo[a] || c[a] > 1000000)
+      throw Error(ErrorCode::kUsage,
+                  std::string("counts: ") + "uv"[a] + " count " + std::to_string(c[a]) +
+                      " must be degree + 1 (" + std::to_string(lo[a]) + ") ... 1000000",
+                  Place{.option = "counts"}, {static_cast<double>(c[a])});
+  if (static_cast<double>(c[0]) * c[1] > 1e7)
+    throw Error(ErrorCode::kUsage, "counts: more than 10^7 control points",
+                Place{.option = "counts"}, {static_cast<double>(c[0]), static_cast<double>(c[1])});
+}
+
+// FitOptions::counts: the surface at exactly that pair, the first rule that holds (else the
+// one closest to holding); minimax where least squares does not hold and the norm allows.
+FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0) {
+  check_counts(o);
+  const Frame fr(rows, o);
+  const int nu = (*o.counts)[0], nv = (*o.counts)[1];
+  std::optional<Surface> best;
+  std::vector<double> best_u, best_v;
+  DeviationCheck best_check;
+  PairVerdict best_verdict{false, 0};
+  Parametrization best_rule = Parametrization::kUniform;
+  FitNorm best_norm = FitNorm::kL2;
+  long tried = 0;
+  for (Parametrization rule : rules_of(o.parametrization)) {
+    TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads));
+    for (FitNorm norm : {FitNorm::kL2, FitNorm::kLinf}) {
+      // kL2: least squares only; kLinf: minimax only; kAuto: minimax where this rule's least
+      // squares missed T by at most kLinfReach.
+      if (norm == FitNorm::kL2 && o.norm == FitNorm::kLinf) continue;
+      if (norm == FitNorm::kLinf && o.norm == FitNorm::kL2) continue;
+      if (norm == FitNorm::kLinf && o.norm == FitNorm::kAuto &&
+          (best_verdict.holds || !best || best_rule != rule || best_verdict.ratio > kLinfReach))
+        continue;
+      ++tried;
+      auto s = solve_pair(prob, norm, nu, nv, o.tolerance);
+      if (!s) continue;
+      DeviationCheck c;
+      const std::vector<double> v = prob.v_at(nv);
+      const PairVerdict verdict = fr.judge(*s, prob.u_at(nu), v, &c);
+      if (!best || (verdict.holds && !best_verdict.holds) ||
+          (verdict.holds == best_verdict.holds && verdict.ratio < best_verdict.ratio)) {
+        best = std::move(s);
+        best_u = prob.u_at(nu);
+        best_v = v;
+        best_check = c;
+        best_verdict = verdict;
+        best_rule = rule;
+        best_norm = norm;
+      }
+    }
+    if (best_verdict.holds) break;
+  }
+  if (!best)
+    throw Error(ErrorCode::kToleranceNotMet,
+                "no surface with " + std::to_string(nu) + " x " + std::to_string(nv) +
+                    " control points: a knot span has no data",
+                Place{.option = "counts"}, {static_cast<double>(nu), static_cast<double>(nv)});
+  FitResult out =
+      assemble(fr, std::move(*best), std::move(best_u), std::move(best_v), best_check, o);
+  out.report.parametrization = best_rule;
+  out.report.norm = best_norm;
+  out.report.pairs_tried = tried;
+  out.report.stop_reason = "counts given";
+  // A guard's failure makes the surface not hold, as in the search.
+  out.report.within_tolerance = best_verdict.holds;
+  out.report.seconds = now() - t0;
+  return out;
+}
+
+}  // namespace
+
+FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
+  const double t0 = now();
+  validate(rows, o);
+  if (o.counts) return fit_at_counts(rows, o, t0);
+
+  // The two-stage fit: a pair that holds, so the bound to beat.
+  FitOptions o1 = o;
+  o1.method = FitMethod::kSfit01;
+  if (o1.parametrization == Parametrization::kAuto) o1.parametrization = Parametrization::kPaper;
+  SurfaceFitter two_stage(o1);
+  FitResult base = two_stage.fit(rows);
+  const long base_size = static_cast<long>(base.surface.count_u) * base.surface.count_v;
+  long bound = base.report.within_tolerance ? base_size : LONG_MAX;
+
+  const Frame fr(rows, o);
+  std::optional<Candidate> best;
+  long tried = 0, over_budget = 0;
+  // At T = 0 only interpolation holds, which the two stages give with the fewest control
+  // points there are (one per point and row where the data is a grid).
+  const bool interpolate = (o.tolerance.array() == 0).all();
+  for (Parametrization rule : rules_of(o.parametrization)) {
+    if (interpolate) break;
+    TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads));
+    const PairRange range{prob.min_u(), prob.max_u(), prob.min_v(), prob.max_v()};
+    PairOracle l2([&](int nu, int nv) {
+      // More control points than points leave the system singular.
+      if (static_cast<double>(nu) * nv > static_cast<double>(fr.centred.total_points()))
+        return PairVerdict{false, HUGE_VAL};
+      if (prob.cost(nu, nv) > kSolveBudget) {
+        ++over_budget;
+        return PairVerdict{false, HUGE_VAL};
+      }
+      auto s = solve_pair(prob, FitNorm::kL2, nu, nv, o.tolerance);
+      if (!s) return PairVerdict{false, HUGE_VAL};
+      return fr.judge(*s, prob.u_at(nu), prob.v_at(nv));
+    });
+    PairChoice choice = search_pairs(range, bound, l2);
+    tried += l2.tried();
+    std::optional<Candidate> found;
+    if (choice.nu > 0) found = Candidate{rule, FitNorm::kL2, choice.nu, choice.nv, choice.stop};
+    if (o.norm != FitNorm::kL2) {
+      // Minimax from the least-squares choice (or the two-stage pair) downwards, at pairs
+      // where least squares missed T by a little (kAuto) or at all (kLinf).
+      PairOracle linf([&](int nu, int nv) {
+        auto s = solve_pair(prob, FitNorm::kLinf, nu, nv, o.tolerance);
+        if (!s) return PairVerdict{false, HUGE_VAL};
+        return fr.judge(*s, prob.u_at(nu), prob.v_at(nv));
+      });
+      auto worth = [&](int nu, int nv) {
+        if (!minimax_affordable(fr.centred.total_points(), nu, nv)) return false;
+        if (o.norm == FitNorm::kLinf) return true;
+        const PairVerdict& v = l2(nu, nv);
+        return !v.holds && v.ratio <= kLinfReach;
+      };
+      int nu = found ? found->nu : base.surface.count_u;
+      int nv = found ? found->nv : base.surface.count_v;
+      if (!found && base.report.parametrization != rule) nu = 0;  // no pair of this rule
+      if (nu > 0) {
+        const auto [mu, mv] = descend(nu, nv, range, linf, worth);
+        if (static_cast<long>(mu) * mv < static_cast<long>(nu) * nv) {
+          found = Candidate{rule, FitNorm::kLinf, mu, mv,
+                            o.norm == FitNorm::kLinf ? "minimal"
+                                                     : "minimal (minimax tried "
+                                                       "where least squares missed "
+                                                       "T by up to 50 %)"};
+        }
+      }
+      tried += linf.tried();
+    }
+    if (found && static_cast<long>(found->nu) * found->nv < bound) {
+      bound = static_cast<long>(found->nu) * found->nv;
+      best = found;
+    }
+  }
+  if (!best) {
+    base.report.method = FitMethod::kSfit01;
+    base.report.pairs_tried = tried;
+    base.report.stop_reason =
+        interpolate ? "sfit01: T = 0 interpolates" : "sfit01: no smaller pair held";
+    if (over_budget > 0)
+      base.report.stop_reason +=
+          " (" + std::to_string(over_budget) + " pairs over the solve budget)";
+    base.report.seconds = now() - t0;
+    return base;
+  }
+  // Remake the winner (deterministic: the same bits as when it was judged) and check it.
+  TensorProblem prob(fr.centred, spec_of(o, best->rule, fr.threads));
+  Surface s = *solve_pair(prob, best->norm, best->nu, best->nv, o.tolerance);
+  std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(best->nv);
+  DeviationCheck c;
+  fr.judge(s, u, v, &c);
+  FitResult out = assemble(fr, std::move(s), std::move(u), std::move(v), c, o);
+  FitReport& r = out.report;
+  r.parametrization = best->rule;
+  r.norm = best->norm;
+  r.pairs_tried = tried;
+  r.stop_reason = best->stop;
+  if (over_budget > 0)
+    r.stop_reason += " (" + std::to_string(over_budget) + " pairs over the solve budget)";
+  r.row_counts = std::move(base.report.row_counts);
+  r.column_counts = std::move(base.report.column_counts);
+  r.raised_u = base.report.raised_u;
+  r.raised_v = base.report.raised_v;
+  r.repaired_rows = base.report.repaired_rows;
+  r.repaired_columns = base.report.repaired_columns;
+  r.solves = base.report.solves;
+  r.seconds = now() - t0;
+  return out;
+}
+
+}  // namespace sfit::detail
