@@ -204,6 +204,38 @@ TEST(SurfaceSearch, FixedCountsFitExactlyThereAndSayWhetherTheyHold) {
   EXPECT_THROW(fit_surface(rows, o), Error);
 }
 
+TEST(SurfaceSearch, MinimaxOfALineToAParabolaEquioscillatesAtOneEighth) {
+  // z = x^2 on [0, 1] by a line (degree 1, 2 control points along u): the minimax line is
+  // x - 1/8, its error +-1/8 at x = 0, 1/2, 1 (Chebyshev equioscillation); least squares'
+  // is larger (1/6 at the ends for dense points).
+  Rows rows;
+  for (int j = 0; j < 3; ++j) {
+    std::vector<Point> row;
+    for (int k = 0; k <= 40; ++k) row.emplace_back(k / 40.0, j, (k / 40.0) * (k / 40.0));
+    rows.add_row(row);
+  }
+  FitOptions o;
+  o.degree_u = 1;
+  o.degree_v = 1;
+  o.parametrization = Parametrization::kUniform;
+  o.tolerance = Point(1, 1, 0.13);
+  o.counts = std::array<int, 2>{2, 2};
+  o.norm = FitNorm::kLinf;
+  const FitResult linf = fit_surface(rows, o);
+  EXPECT_TRUE(linf.report.within_tolerance);
+  EXPECT_EQ(linf.report.norm, FitNorm::kLinf);
+  EXPECT_NEAR(linf.report.max_deviation.z(), 0.125, 1e-9);
+  o.norm = FitNorm::kL2;
+  const FitResult l2 = fit_surface(rows, o);
+  EXPECT_GT(l2.report.max_deviation.z(), 0.15);
+  EXPECT_FALSE(l2.report.within_tolerance);
+  // Where least squares misses T by a little, the search's auto norm takes the minimax fit.
+  o.norm = FitNorm::kAuto;
+  const FitResult automatic = fit_surface(rows, o);
+  EXPECT_EQ(automatic.report.norm, FitNorm::kLinf);
+  EXPECT_TRUE(automatic.report.within_tolerance);
+}
+
 TEST(SurfaceSearch, NamesOfMethodsAndNormsRoundTrip) {
   for (FitMethod m : {FitMethod::kSurface, FitMethod::kSfit01}) {
     FitMethod back{};

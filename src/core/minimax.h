@@ -18,9 +18,9 @@
 namespace sfit::detail {
 
 /// Replaces the control points of `s` (started from its least-squares fit) by the minimax
-/// ones on `rows` at parameters u (per point) and v (per row). Stops early, returning false,
-/// once an axis's minimax error is known to exceed its tolerance (no surface then); true
-/// otherwise.
+/// ones on `rows` at parameters u (per point) and v (per row), axis by axis (an axis that
+/// least squares holds keeps its fit). Stops early, returning false, once an axis's minimax
+/// error is known to exceed its tolerance (no surface then); true otherwise.
 bool minimax_refine(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
                     const Point& tolerance, Surface& s);
 

@@ -32,6 +32,12 @@ constexpr double kLinfReach = 1.5;
 // bound leaves room (at 10^6 points, 2 % of them as control points cost ~4e9).
 constexpr double kSolveBudget = 4e9;
 
+// Above this many points the search runs on every step-th point of each row (the positions
+// those points have in the full rows), and its pair is then verified on all points: raised
+// until it holds there, and descended to where one fewer either way fails on all points.
+// The choice is then as minimal as on the full data wherever holding is monotone near it.
+constexpr std::size_t kSearchPoints = 100000;
+
 // The frame's state for one fit: centred rows, their box, round-off, threads.
 struct Frame {
   int threads = 1;
@@ -54,8 +60,9 @@ struct Frame {
   }
   // Whether a candidate (centred) holds: every point within T, every guard passed.
   PairVerdict judge(const Surface& s, std::span<const double> u, std::span<const double> v,
-                    DeviationCheck* out = nullptr) const {
-    const DeviationCheck c = check_deviation(s, centred, u, v, tolerance, roundoff, threads);
+                    DeviationCheck* out = nullptr, const Rows* sample = nullptr) const {
+    const DeviationCheck c =
+        check_deviation(s, sample ? *sample : centred, u, v, tolerance, roundoff, threads);
     if (out) *out = c;
     return {c.within && !failed_guard(s, centred_box), c.worst_ratio};
   }
@@ -149,12 +156,14 @@ FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0) {
   for (Parametrization rule : rules_of(o.parametrization)) {
     TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads));
     for (FitNorm norm : {FitNorm::kL2, FitNorm::kLinf}) {
-      // kL2: least squares only; kLinf: minimax only; kAuto: minimax where this rule's least
-      // squares missed T by at most kLinfReach.
-      if (norm == FitNorm::kL2 && o.norm == FitNorm::kLinf) continue;
+      // kL2: least squares only; kLinf: minimax (least squares only where the minimax does
+      // not hold, to return a surface); kAuto: minimax where this rule's least squares
+      // missed T by at most kLinfReach.
       if (norm == FitNorm::kLinf && o.norm == FitNorm::kL2) continue;
       if (norm == FitNorm::kLinf && o.norm == FitNorm::kAuto &&
           (best_verdict.holds || !best || best_rule != rule || best_verdict.ratio > kLinfReach))
+        continue;
+      if (norm == FitNorm::kLinf && !minimax_affordable(fr.centred.total_points(), nu, nv))
         continue;
       ++tried;
       auto s = solve_pair(prob, norm, nu, nv, o.tolerance);
@@ -214,8 +223,15 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
   // At T = 0 only interpolation holds, which the two stages give with the fewest control
   // points there are (one per point and row where the data is a grid).
   const bool interpolate = (o.tolerance.array() == 0).all();
+  const std::size_t points = fr.centred.total_points();
+  const std::size_t step = points > kSearchPoints ? (points + kSearchPoints - 1) / kSearchPoints : 1;
   for (Parametrization rule : rules_of(o.parametrization)) {
     if (interpolate) break;
+    // Nothing below the bound can hold: the smallest pair is (degree + 1)^2.
+    if (bound <= static_cast<long>(o.degree_u + 1) * (o.degree_v + 1)) break;
+    // The paper's parameters depend on a row's length, so a sample of the row has others:
+    // on large data that rule is the two-stage fit's alone.
+    if (step > 1 && rule == Parametrization::kPaper) continue;
     TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads));
     const PairRange range{prob.min_u(), prob.max_u(), prob.min_v(), prob.max_v()};
     PairOracle l2([&](int nu, int nv) {
@@ -230,7 +246,51 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
       if (!s) return PairVerdict{false, HUGE_VAL};
       return fr.judge(*s, prob.u_at(nu), prob.v_at(nv));
     });
-    PairChoice choice = search_pairs(range, bound, l2);
+    PairChoice choice;
+    if (step == 1) {
+      choice = search_pairs(range, bound, l2);
+    } else {
+      std::vector<double> sample_positions;
+      const Rows sample = subsample(fr.centred, step, prob.positions_u(), sample_positions);
+      TensorProblem sp(sample, spec_of(o, rule, fr.threads), std::move(sample_positions),
+                       prob.positions_v());
+      PairOracle on_sample([&](int nu, int nv) {
+        if (static_cast<double>(nu) * nv > static_cast<double>(sample.total_points()) ||
+            sp.cost(nu, nv) > kSolveBudget)
+          return PairVerdict{false, HUGE_VAL};
+        auto s = solve_pair(sp, FitNorm::kL2, nu, nv, o.tolerance);
+        if (!s) return PairVerdict{false, HUGE_VAL};
+        return fr.judge(*s, sp.u_at(nu), sp.v_at(nv), nullptr, &sample);
+      });
+      const PairRange sample_range{sp.min_u(), sp.max_u(), sp.min_v(), sp.max_v()};
+      const PairChoice c = search_pairs(sample_range, bound, on_sample);
+      tried += on_sample.tried();
+      if (c.nu > 0) {
+        // Raise until all points hold (the smallest product first), then descend on them.
+        int nu = c.nu, nv = c.nv;
+        bool holds = l2(nu, nv).holds;
+        for (int k = 1; !holds && k <= 16; ++k) {
+          for (const auto& [a, b] : {std::pair{nu + k, nv}, std::pair{nu, nv + k},
+                                     std::pair{nu + k, nv + k}}) {
+            if (static_cast<long>(a) * b >= bound || a > range.max_u || b > range.max_v)
+              continue;
+            if (l2(a, b).holds) {
+              nu = a;
+              nv = b;
+              holds = true;
+              break;
+            }
+          }
+        }
+        if (holds) {
+          const auto [mu, mv] = descend(nu, nv, range, l2);
+          choice.nu = mu;
+          choice.nv = mv;
+          choice.stop = "minimal (searched on every " + std::to_string(step) +
+                        "th point of each row, verified on all)";
+        }
+      }
+    }
     tried += l2.tried();
     std::optional<Candidate> found;
     if (choice.nu > 0) found = Candidate{rule, FitNorm::kL2, choice.nu, choice.nv, choice.stop};

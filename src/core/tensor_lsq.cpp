@@ -102,6 +102,34 @@ TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec) : rows_(r
   }
 }
 
+TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec,
+                             std::vector<double> positions_u, std::vector<double> positions_v)
+    : rows_(rows), spec_(spec) {
+  std::size_t hi = 0;
+  for (std::size_t j = 0; j < rows.size(); ++j) hi = std::max(hi, rows[j].size());
+  max_u_ = std::max<int>(min_u(), static_cast<int>(hi));
+  max_v_ = std::max<int>(min_v(), static_cast<int>(rows.size()));
+  shared_u_ = false;
+  positions_u_ = std::move(positions_u);
+  positions_v_ = std::move(positions_v);
+}
+
+Rows subsample(const Rows& rows, std::size_t step, const std::vector<double>& positions,
+               std::vector<double>& sub_positions) {
+  Rows out;
+  sub_positions.clear();
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto row = rows[j];
+    for (std::size_t k = 0; k < row.size(); ++k)
+      if (k % step == 0 || k + 1 == row.size()) {
+        out.push_point(row[k]);
+        if (!positions.empty()) sub_positions.push_back(positions[rows.offsets()[j] + k]);
+      }
+    out.end_row();
+  }
+  return out;
+}
+
 TensorProblem::~TensorProblem() = default;
 
 std::vector<double> TensorProblem::v_at(int nv) const {

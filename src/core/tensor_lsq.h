@@ -38,7 +38,13 @@ class TensorProblem {
  public:
   /// `rows` (centred coordinates) must outlive the problem.
   TensorProblem(const Rows& rows, const TensorSpec& spec);
+  /// The same with the positions given (rule != kPaper): per point of `rows` and per row, e.g.
+  /// those of a larger data set that `rows` samples (subsample()).
+  TensorProblem(const Rows& rows, const TensorSpec& spec, std::vector<double> positions_u,
+                std::vector<double> positions_v);
   ~TensorProblem();
+  const std::vector<double>& positions_u() const { return positions_u_; }
+  const std::vector<double>& positions_v() const { return positions_v_; }
 
   const TensorSpec& spec() const { return spec_; }
   const Rows& rows() const { return rows_; }
@@ -72,6 +78,11 @@ class TensorProblem {
   std::map<int, std::unique_ptr<Moments>> cache_;
   std::size_t cache_bytes_ = 0;
 };
+
+/// Every `step`-th point of every row (and each row's last point), with the positions of the
+/// points kept (from `positions`, per point of `rows`, when not empty) into `sub_positions`.
+Rows subsample(const Rows& rows, std::size_t step, const std::vector<double>& positions,
+               std::vector<double>& sub_positions);
 
 /// Positions across the rows for the geometric rules, from the data alone: the rows resampled
 /// at common fractions of their own positions (their points, where all rows have the same
