@@ -81,10 +81,14 @@ PairChoice search_pairs(const PairRange& r, long bound, PairOracle& holds) {
     if (static_cast<long>(r.min_u) * nv >= best_size) break;
     column(nv, cap_at(nv));
   }
-  // Fine pass: every nv between two coarse ones whose lower bound on the product, (a + 1) x
-  // f(b) (f is non-increasing), is below the best.
+  // Fine pass: every nv between the best coarse nv and its coarse neighbours, where the
+  // lower bound on the product, (a + 1) x f(b) (f is non-increasing), is below the best.
+  // (Every gap would be exact under monotonicity, but costs up to one bisection per nv: 341
+  // pairs on a 5307-point grid at 1e-3 against 120 for these two gaps, for the same pair.)
   for (std::size_t c = 0; c + 1 < coarse.size(); ++c) {
     const int a = coarse[c], b = coarse[c + 1];
+    if (b < best.nv && c + 2 < coarse.size() && coarse[c + 2] < best.nv) continue;
+    if (a > best.nv) break;
     if (b - a < 2) continue;
     const auto fb = f.find(b);
     const long lower_f = fb != f.end() ? fb->second.f : r.min_u;

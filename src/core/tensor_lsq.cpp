@@ -194,7 +194,74 @@ double TensorProblem::cost(int nu, int nv) const {
   return n * band * band;
 }
 
+namespace {
+
+// The symmetric banded matrix sum over equations of b b^T for a curve (count unknowns,
+// width = degree + 1, cyclic when periodic) from its band G(i, i + d), as a sparse matrix.
+Eigen::SparseMatrix<double> band_matrix(const double* G, int count, int width, bool periodic) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < count; ++i)
+    for (int d = 0; d < width; ++d) {
+      if (!periodic && i + d >= count) break;
+      const int c = (i + d) % count;
+      if (G[i * width + d] == 0.0) continue;
+      t.emplace_back(std::min(i, c), std::max(i, c), G[i * width + d]);
+    }
+  Eigen::SparseMatrix<double> A(count, count);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+}  // namespace
+
+// Rows sharing their u (one G): the least squares separates (Kronecker). With R^T R = G and
+// c_j = G^-1 B^T D_j (each row's own fit at nu), sum_j |B (X b_j) - D_j|^2 = sum_j
+// |R (X b_j - c_j)|^2 + const = |R (X Bv^T - C)|^2 + const, least for X = C Bv (Bv^T Bv)^-1
+// whatever R is: every row's fit, then every column of coefficients fitted across the rows.
+bool TensorProblem::solve_separable(int nu, int nv, Surface& out) {
+  const Moments& m = moments(nu);
+  const int pu = spec_.degree_u, pv = spec_.degree_v, wv = pv + 1;
+  const int M = static_cast<int>(rows_.size());
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Upper> gu(
+      band_matrix(m.gram.data(), nu, pu + 1, spec_.closed_u));
+  if (gu.info() != Eigen::Success) return false;
+  Eigen::MatrixXd R(nu, 3 * M);
+  for (int j = 0; j < M; ++j)
+    for (int i = 0; i < nu; ++i) R.block<1, 3>(i, 3 * j) = m.rhs[j * nu + i].transpose();
+  const Eigen::MatrixXd C = gu.solve(R);  // column 3j + a: row j's coefficients, axis a
+  const std::vector<double> v = v_at(nv);
+  std::vector<double> H(static_cast<std::size_t>(nv) * wv, 0.0);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv, 3 * nu);
+  std::array<double, kMaxDegree + 1> bv;
+  for (int j = 0; j < M; ++j) {
+    const int fv = eval_basis(pv, nv, spec_.closed_v, v[j], bv.data());
+    for (int a = 0; a < wv; ++a) {
+      const int l = wrap_index(fv + a, nv);
+      for (int d = 0; a + d < wv; ++d) H[l * wv + d] += bv[a] * bv[a + d];
+      for (int i = 0; i < nu; ++i)
+        for (int x = 0; x < 3; ++x) rhs(l, 3 * i + x) += bv[a] * C(i, 3 * j + x);
+    }
+  }
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Upper> gv(
+      band_matrix(H.data(), nv, wv, spec_.closed_v));
+  if (gv.info() != Eigen::Success) return false;
+  const Eigen::MatrixXd X = gv.solve(rhs);  // X(l, 3i + a)
+  if (!X.allFinite()) return false;
+  out.degree_u = pu;
+  out.degree_v = pv;
+  out.periodic_u = spec_.closed_u;
+  out.periodic_v = spec_.closed_v;
+  out.count_u = nu;
+  out.count_v = nv;
+  out.control.resize(static_cast<std::size_t>(nu) * nv);
+  for (int i = 0; i < nu; ++i)
+    for (int l = 0; l < nv; ++l)
+      out.at(i, l) = Point(X(l, 3 * i), X(l, 3 * i + 1), X(l, 3 * i + 2));
+  return true;
+}
+
 bool TensorProblem::solve(int nu, int nv, Surface& out) {
+  if (shared_u_) return solve_separable(nu, nv, out);
   const Moments& m = moments(nu);
   const int pu = spec_.degree_u, pv = spec_.degree_v, wu = pu + 1, wv = pv + 1;
   const int sv = 2 * pv + 1;  // l' - l + pv

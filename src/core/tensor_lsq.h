@@ -9,7 +9,9 @@
 //          sum_j (b_v(v_j) b_v(v_j)^T) (x) G_j, sparse and symmetric positive definite where
 //          every span has data, factorised by CHOLMOD (SuiteSparse, supernodal, with its
 //          fill-reducing ordering, which also takes the wrap terms of closed directions).
-//          Rows that share their u (a grid at the paper's or uniform rule) share one G.
+//          Rows that share their u (a grid at the paper's or uniform rule) share one G, and
+//          the problem separates exactly (Kronecker): each row's own fit at nu, then each
+//          column of those coefficients fitted across the rows at nv (solve_separable()).
 // WHY      The normal equations square the condition number; with uniform knots and data in
 //          every span it stays small at the degrees used in practice, and a fit whose solve
 //          lost accuracy only loses optimality: every candidate is checked against the
@@ -68,6 +70,7 @@ class TensorProblem {
  private:
   struct Moments;
   const Moments& moments(int nu);
+  bool solve_separable(int nu, int nv, Surface& out);
 
   const Rows& rows_;
   TensorSpec spec_;
