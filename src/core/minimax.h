@@ -2,7 +2,7 @@
 //
 // PURPOSE  min over the control points of max_k |S(u_k, v_k) - D_k|, per axis, for a surface
 //          with given counts, knots and parameters: where least squares misses T by a little,
-//          the minimax surface at the same pair may hold it (METHOD.md 7.2).
+//          the minimax surface at the same pair may hold it (docs/method.md, the minimax norm).
 // METHOD   A linear program per axis (min t subject to -t <= S(u_k, v_k) - D_k <= t), solved
 //          by CLP's dual simplex on an active set of points: the points least squares fits
 //          worst, then, round by round, every point the minimax surface of the set misses by

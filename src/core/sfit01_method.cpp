@@ -1,4 +1,4 @@
-// The paper's two-stage method (FitMethod::kSfit01, METHOD.md 3-5): curve stage on the rows,
+// The paper's two-stage method (FitMethod::kSfit01, docs/method.md): curve stage on the rows,
 // re-representation on a common count, transverse stage on the columns of control points.
 // Unchanged in its results by the split into frame and methods (the tests compare bits).
 #include <algorithm>
