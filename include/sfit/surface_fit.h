@@ -26,7 +26,7 @@ enum class FitMethod {
   /// from what kSfit01 finds, so it never gives more control points than kSfit01.
   kSurface,
   /// The paper's two stages (curve stage on the rows, transverse stage on the columns, each
-  /// within T/2; METHOD.md 3-5), bit for bit as before the surface search existed.
+  /// within T/2; docs/method.md), bit for bit as before the surface search existed.
   kSfit01,
 };
 /// The norm the surface search fits with at a pair (nu, nv).

@@ -15,6 +15,8 @@ namespace {
 // Moments kept per problem (one entry per nu): a bisection over nu for one nv and the next
 // nv's bisection revisit the same few nu.
 constexpr std::size_t kMomentBytes = std::size_t{256} << 20;
+// Below this bound on the factorisation's flops (cost()), Eigen's simplicial Cholesky.
+constexpr double kSimplicialFlops = 2e8;
 
 // Row j resampled at fraction s of its positions f (ascending; closed rows wrap to point 0).
 Point resample(std::span<const Point> row, std::span<const double> f, double s, bool closed) {
@@ -314,12 +316,23 @@ bool TensorProblem::solve(int nu, int nv, Surface& out) {
     }
   Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   A.setFromTriplets(trip.begin(), trip.end());
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
-  llt.cholmod().print = 0;  // a singular system is an answer here ("does not hold"), not news
-  llt.compute(A);
-  if (llt.info() != Eigen::Success) return false;
-  const Eigen::MatrixX3d x = llt.solve(rhs);
-  if (llt.info() != Eigen::Success || !x.allFinite()) return false;
+  Eigen::MatrixX3d x;
+  if (cost(nu, nv) < kSimplicialFlops) {
+    // Small systems: Eigen's simplicial factorisation. CHOLMOD's supernodal one starts
+    // OpenMP threads and BLAS calls whose overhead was a third of a volcano fit at 1e-3.
+    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt(A);
+    if (llt.info() != Eigen::Success) return false;
+    x = llt.solve(rhs);
+    if (llt.info() != Eigen::Success) return false;
+  } else {
+    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
+    llt.cholmod().print = 0;  // a singular system is an answer here ("does not hold")
+    llt.compute(A);
+    if (llt.info() != Eigen::Success) return false;
+    x = llt.solve(rhs);
+    if (llt.info() != Eigen::Success) return false;
+  }
+  if (!x.allFinite()) return false;
   out.degree_u = pu;
   out.degree_v = pv;
   out.periodic_u = spec_.closed_u;
