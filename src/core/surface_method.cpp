@@ -34,6 +34,11 @@ constexpr int kLinfTries = 2;
 // and a pair that size is far from the fewest control points anyway wherever the two-stage
 // bound leaves room (at 10^6 points, 2 % of them as control points cost ~4e9).
 constexpr double kSolveBudget = 4e9;
+// ... and at most this many flops per data point of the problem (2e8 at least): on a 10^5-point
+// sample, a pair costing more is far above 2 % of the points as control points.
+double solve_budget(std::size_t points) {
+  return std::clamp(2000.0 * static_cast<double>(points), 2e8, kSolveBudget);
+}
 
 // Above this many points the search runs on every step-th point of each row (the positions
 // those points have in the full rows), and its pair is then verified on all points: raised
@@ -276,7 +281,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
       // More control points than points leave the system singular.
       if (static_cast<double>(nu) * nv > static_cast<double>(fr.centred.total_points()))
         return PairVerdict{false, HUGE_VAL};
-      if (prob.cost(nu, nv) > kSolveBudget) {
+      if (prob.cost(nu, nv) > solve_budget(fr.centred.total_points())) {
         ++over_budget;
         return PairVerdict{false, HUGE_VAL};
       }
@@ -294,7 +299,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
                        prob.positions_v());
       PairOracle on_sample([&](int nu, int nv) {
         if (static_cast<double>(nu) * nv > static_cast<double>(sample.total_points()) ||
-            sp.cost(nu, nv) > kSolveBudget)
+            sp.cost(nu, nv) > solve_budget(sample.total_points()))
           return PairVerdict{false, HUGE_VAL};
         auto s = solve_pair(sp, FitNorm::kL2, nu, nv, o.tolerance);
         if (!s) return PairVerdict{false, HUGE_VAL};

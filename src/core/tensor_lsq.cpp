@@ -190,6 +190,9 @@ const TensorProblem::Moments& TensorProblem::moments(int nu) {
 
 double TensorProblem::cost(int nu, int nv) const {
   const double n = static_cast<double>(nu) * nv;
+  if (shared_u_)  // separable: two banded factorisations and passes over the coefficients
+    return 3.0 * (spec_.degree_u + spec_.degree_v + 2) *
+           (n + static_cast<double>(nu) * rows_.size());
   const double band = std::min(static_cast<double>(nu) * spec_.degree_v + spec_.degree_u,
                                static_cast<double>(nv) * spec_.degree_u + spec_.degree_v) +
                       1;
