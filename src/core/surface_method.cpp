@@ -4,6 +4,8 @@
 // at the full T per axis and guarded between the points; never more control points than the
 // two-stage method (FitMethod::kSfit01), whose fit it starts from.
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <climits>
 #include <optional>
 #include <string>
@@ -12,6 +14,7 @@
 #include "minimax.h"
 #include "pair_search.h"
 #include "parallel.h"
+#include "sfit/basis.h"
 #include "sfit/curve_fit.h"
 #include "sfit/deviation.h"
 #include "sfit/error.h"
@@ -46,6 +49,40 @@ double solve_budget(std::size_t points) {
 // The choice is then as minimal as on the full data wherever holding is monotone near it.
 constexpr std::size_t kSearchPoints = 100000;
 
+// Whether every point's distance |S(u, v) - D| (Euclidean, at its parameters) is within
+// `limit`. The per-axis check allows up to sqrt(3) T; the closest-point checker of the peer
+// benchmark (docs/bench_peers.md) counts a point whose distance to the surface exceeds T, so
+// the search asks this too (the closest distance is at most this one).
+bool distances_within(const Surface& s, const Rows& rows, std::span<const double> u,
+                      std::span<const double> v, double limit, int threads) {
+  std::atomic<bool> ok{true};
+  const std::size_t M = rows.size(), per = 16;
+  parallel_for((M + per - 1) / per, threads, [&](std::size_t b) {
+    std::array<double, kMaxDegree + 1> bu, bv;
+    std::vector<Point> iso(static_cast<std::size_t>(s.count_u));
+    for (std::size_t j = b * per; j < std::min(M, (b + 1) * per) && ok.load(); ++j) {
+      const int fv = eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
+      for (int i = 0; i < s.count_u; ++i) {
+        Point q = Point::Zero();
+        for (int c = 0; c <= s.degree_v; ++c) q += bv[c] * s.at(i, wrap_index(fv + c, s.count_v));
+        iso[i] = q;
+      }
+      const auto row = rows[j];
+      for (std::size_t k = 0; k < row.size(); ++k) {
+        const int fu =
+            eval_basis(s.degree_u, s.count_u, s.periodic_u, u[rows.offsets()[j] + k], bu.data());
+        Point p = Point::Zero();
+        for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[wrap_index(fu + a, s.count_u)];
+        if (!((p - row[k]).norm() <= limit)) {
+          ok.store(false);
+          return;
+        }
+      }
+    }
+  });
+  return ok.load();
+}
+
 // The frame's state for one fit: centred rows, their box, round-off, threads.
 struct Frame {
   int threads = 1;
@@ -72,7 +109,11 @@ struct Frame {
     const DeviationCheck c =
         check_deviation(s, sample ? *sample : centred, u, v, tolerance, roundoff, threads);
     if (out) *out = c;
-    return {c.within && !failed_guard(s, centred_box), c.worst_ratio};
+    const Rows& r = sample ? *sample : centred;
+    const double limit = tolerance.minCoeff() + roundoff;
+    return {
+        c.within && distances_within(s, r, u, v, limit, threads) && !failed_guard(s, centred_box),
+        c.worst_ratio};
   }
 };
 
