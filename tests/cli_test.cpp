@@ -34,9 +34,11 @@ TEST(Cli, FitWritesContractJsonAndReport) {
 TEST(Cli, ParametersOptionReachesTheFitAndTheReport) {
   const std::string dir = test::temp_dir();
   const std::string hull = "'" + test::example("ship_px121_stations.rows") + "'";
-  const auto paper = run_cli("fit " + hull + " --tol-rel 1e-2 -q --report '" + dir + "/p.json'");
-  const auto chord =
-      run_cli("fit " + hull + " --tol-rel 1e-2 --parameters chord --report '" + dir + "/c.json'");
+  // The two-stage method (the default surface search tries every rule itself).
+  const auto paper = run_cli("fit " + hull + " --method sfit01 --tol-rel 1e-2 -q --report '" +
+                             dir + "/p.json'");
+  const auto chord = run_cli("fit " + hull + " --method sfit01 --tol-rel 1e-2 --parameters chord " +
+                             "--report '" + dir + "/c.json'");
   ASSERT_EQ(paper.exit_code, 0) << paper.err;
   ASSERT_EQ(chord.exit_code, 0) << chord.err;
   EXPECT_NE(chord.err.find("; chord parameters"), std::string::npos) << chord.err;

@@ -99,6 +99,7 @@ TEST(GeometricParameters, ChordLengthNeedsFarFewerControlPointsOnUnevenRows) {
   const Rows rows = uneven_rows(40, 80);
   for (double rel : {1e-2, 1e-3}) {
     FitOptions o;
+    o.method = FitMethod::kSfit01;  // the two stages at each rule
     o.tolerance = relative_tolerance(rows, rel);
     const FitResult paper = fit_surface(rows, o);
     o.parametrization = Parametrization::kChord;
@@ -176,6 +177,7 @@ TEST(GeometricParameters, WholeFitFallsBackToThePaperAndSaysSo) {
   // fits instead, bit for bit, and the report says so.
   const Rows rows = test::sample_rows(tube, {31, 40, 35, 52, 44, 38, 47, 33, 41, 36}, true, false);
   FitOptions o;
+  o.method = FitMethod::kSfit01;  // the two-stage method's fallback
   o.closed_u = true;
   o.tolerance = relative_tolerance(rows, 1e-4);
   const FitResult paper = fit_surface(rows, o);

@@ -87,9 +87,16 @@ void add_fit_option_flags(CLI::App* c, FitOptionArgs& a) {
       ->check(CLI::IsMember({"fast", "linear"}));
   c->add_option("--parameters", a.parameters,
                 "how points get parameters, along and across the rows: paper (SFIT01's, by the "
-                "point's index; default), uniform (index), chord (chord length), centripetal, or "
-                "fewest (tries the four, keeps the fewest control points)")
-      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest"}));
+                "point's index), uniform (index), chord (chord length), centripetal, fewest "
+                "(tries the four, keeps the fewest control points), or auto (default: the "
+                "four with --method surface, paper with --method sfit01)")
+      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest", "auto"}));
+  c->add_option("--method", a.method,
+                "surface (default: the fewest nu x nv whose surface holds T, searched over all "
+                "points at once; never more than sfit01) or sfit01 (the paper's two stages)");
+  c->add_option("--norm", a.norm,
+                "with --method surface: l2 (least squares), linf (minimax), auto (default: "
+                "least squares, minimax where it misses T by a little)");
   c->add_option("--threads", a.threads,
                 "threads, 0 (all cores) ... " + std::to_string(kMaxThreads) +
                     "; results do not depend on it");
@@ -114,6 +121,12 @@ CheckedFitOptions check_fit_options(const FitOptionArgs& a) {
     throw Error(ErrorCode::kUsage,
                 "'" + a.parameters + "' is not one of paper, uniform, chord, centripetal, fewest",
                 Place{.option = "--parameters"});
+  if (!parse_fit_method(a.method, o.method))
+    throw Error(ErrorCode::kUsage, "'" + a.method + "' is not a method (surface, sfit01)",
+                Place{.option = "--method"});
+  if (!parse_fit_norm(a.norm, o.norm))
+    throw Error(ErrorCode::kUsage, "'" + a.norm + "' is not a norm (l2, linf, auto)",
+                Place{.option = "--norm"});
   check_threads(a.threads, "--threads");
   o.threads = a.threads;
   if (a.tol && a.tol_rel)

@@ -23,11 +23,12 @@ struct FitOptionArgs {
   std::optional<double> tol_rel;
   std::string closed;
   std::string search = "fast";
-  std::string parameters = "paper";
+  std::string parameters = "auto";
+  std::string method = "surface", norm = "auto";
   int threads = 0;
 };
-/// Adds --degree, --degree-u, --degree-v, --tol, --tol-rel, --closed, --search, --parameters
-/// and --threads to `c`, bound to `a` (fit and edit share them).
+/// Adds --degree, --degree-u, --degree-v, --tol, --tol-rel, --closed, --search, --parameters,
+/// --method, --norm and --threads to `c`, bound to `a` (fit and edit share them).
 void add_fit_option_flags(CLI::App* c, FitOptionArgs& a);
 /// Checked options: `options` has everything but the tolerance, which comes from the data
 /// unless it was given absolutely (tolerance()).

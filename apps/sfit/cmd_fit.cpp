@@ -111,13 +111,21 @@ int run_fit(const FitArgs& a) {
   const FitReport& r = fit.report;
   const auto [rmin, rmax] = std::minmax_element(r.row_counts.begin(), r.row_counts.end());
   const auto [cmin, cmax] = std::minmax_element(r.column_counts.begin(), r.column_counts.end());
-  say(fmt::format(
-      "surface {} x {} control points (rows need {}..{}, columns {}..{}); {} parameters", r.count_u,
-      r.count_v, *rmin, *rmax, *cmin, *cmax, to_string(r.parametrization)));
-  if (o.parametrization == Parametrization::kFewest)
+  // The two stages' counts (empty where the surface search did not need to run them).
+  const std::string stages =
+      r.row_counts.empty() || r.column_counts.empty()
+          ? ""
+          : fmt::format(" (rows need {}..{}, columns {}..{})", *rmin, *rmax, *cmin, *cmax);
+  say(fmt::format("surface {} x {} control points{}; {} parameters", r.count_u, r.count_v, stages,
+                  to_string(r.parametrization)));
+  if (r.method == FitMethod::kSurface || o.method == FitMethod::kSurface)
+    say(fmt::format("method {} ({} norm, {} pairs tried): {}", to_string(r.method),
+                    to_string(r.norm), r.pairs_tried, r.stop_reason));
+  if (o.parametrization == Parametrization::kFewest ||
+      (o.parametrization == Parametrization::kAuto && o.method == FitMethod::kSurface))
     say(fmt::format("{} parameters gave the fewest control points of the four rules",
                     to_string(r.parametrization)));
-  else if (r.parametrization != o.parametrization)
+  else if (o.parametrization != Parametrization::kAuto && r.parametrization != o.parametrization)
     say(fmt::format("note: {} parameters could not hold the tolerance here; the paper's did",
                     to_string(o.parametrization)));
   double used = 0;

@@ -28,9 +28,10 @@ class Peer {
   virtual std::string notes() const { return {}; }
 };
 
-/// sfit::fit_surface, bicubic, T = (t, t, t) per axis, `threads` as FitOptions::threads.
+/// sfit::fit_surface (the default method; kAuto: its own choice of rules), bicubic,
+/// T = (t, t, t) per axis, `threads` as FitOptions::threads.
 std::unique_ptr<Peer> make_sfit(const Rows& rows, double t, bool closed_u, int threads,
-                                Parametrization rule = Parametrization::kPaper);
+                                Parametrization rule = Parametrization::kAuto);
 
 /// OpenCASCADE GeomAPI_PointsToBSplineSurface on the grid (all rows of equal length),
 /// DegMin = DegMax = 3, C2, Tol3D = t (a distance at OCCT's own chord-length parameters).

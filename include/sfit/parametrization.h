@@ -20,9 +20,12 @@ enum class Parametrization {
   /// Not a rule: fit_surface() tries the four above and keeps the surface with the fewest
   /// control points (the report names the rule used). Costs the four fits.
   kFewest,
+  /// Not a rule: the fit method's own choice (FitOptions::method): kPaper for the two-stage
+  /// method (FitMethod::kSfit01, as SFIT01), the four rules as kFewest for the surface search.
+  kAuto,
 };
 
-/// "paper", "uniform", "chord", "centripetal", "fewest".
+/// "paper", "uniform", "chord", "centripetal", "fewest", "auto".
 std::string_view to_string(Parametrization p);
 /// The inverse of to_string(); false if `name` is none of them.
 bool parse_parametrization(std::string_view name, Parametrization& out);

@@ -2,7 +2,10 @@
 // with every data point checked on the finished surface.
 #pragma once
 
+#include <array>
 #include <functional>
+#include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -17,6 +20,29 @@ namespace sfit {
 /// Deviations below this fraction of the data's size count as round-off (used at T = 0).
 inline constexpr double kRoundoffRelative = 1e-10;
 
+/// How the control-point counts are found (docs/control-points.md).
+enum class FitMethod {
+  /// Default: tensor-product least squares over all points at once at each pair (nu, nv),
+  /// checked at the full T per axis, and a search for the fewest nu x nv that hold; starts
+  /// from what kSfit01 finds, so it never gives more control points than kSfit01.
+  kSurface,
+  /// The paper's two stages (curve stage on the rows, transverse stage on the columns, each
+  /// within T/2; docs/method.md), bit for bit as before the surface search existed.
+  kSfit01,
+};
+/// The norm the surface search fits with at a pair (nu, nv).
+enum class FitNorm {
+  kL2,    ///< least squares
+  kLinf,  ///< minimax: the smallest max |S - D| per axis at that pair (a linear program)
+  kAuto,  ///< least squares, and minimax where least squares misses T by a little
+};
+/// "surface", "sfit01"; "l2", "linf", "auto".
+std::string_view to_string(FitMethod m);
+std::string_view to_string(FitNorm n);
+/// The inverses of to_string(); false if `name` is none of them.
+bool parse_fit_method(std::string_view name, FitMethod& out);
+bool parse_fit_norm(std::string_view name, FitNorm& out);
+
 struct FitOptions {
   int degree_u = 3;                 ///< degree along the rows, 1 ... 20
   int degree_v = 3;                 ///< degree across the rows, 1 ... 20
@@ -27,13 +53,19 @@ struct FitOptions {
   /// How points get their parameters, in both directions (docs/method.md 3 and 7.4). Across the
   /// rows, the geometric rules average the columns' normalized chord lengths (one v per row,
   /// shared by every column, as the guarantee needs).
-  Parametrization parametrization = Parametrization::kPaper;
+  /// kAuto: the paper's for kSfit01, each of the four rules for kSurface (as kFewest).
+  Parametrization parametrization = Parametrization::kAuto;
   /// Counts to start the searches from, e.g. a previous fit's report.row_counts and
   /// column_counts (used where their size matches the rows, the columns); kKnown takes them
   /// as the answer. Without them kFast starts each row from the previous row's count, in
   /// fixed blocks of 16 rows (so the result does not depend on the thread count).
   std::vector<int> row_count_hints, column_count_hints;
   int threads = 0;  ///< 0: all cores; results are identical for any count
+  FitMethod method = FitMethod::kSurface;
+  FitNorm norm = FitNorm::kAuto;  ///< kSurface only (kSfit01 is least squares)
+  /// kSurface only: fit at exactly these counts (nu, nv), no search; the report says whether
+  /// the surface holds T (a fast refit, e.g. while an editor drags a point).
+  std::optional<std::array<int, 2>> counts;
   /// Called between stages: (stage name, items done, items in the stage).
   std::function<void(std::string_view, std::size_t, std::size_t)> progress;
 };
@@ -52,8 +84,10 @@ struct FitReport {
   int count_v = 0;  ///< nv
   int degree_u = 0, degree_v = 0;
   bool closed_u = false, closed_v = false;
-  Parametrization parametrization = Parametrization::kPaper;
-  std::vector<int> row_counts;     ///< minimal count of each row (curve stage)
+  Parametrization parametrization = Parametrization::kPaper;  ///< the rule that made it
+  /// Minimal count of each row (curve stage); for kSurface those of the kSfit01 fit it
+  /// started from (column_counts, raised_*, repaired_* likewise).
+  std::vector<int> row_counts;
   std::vector<int> column_counts;  ///< minimal count of each column (transverse stage)
   int raised_u = 0;                ///< times nu was raised above max(row_counts) by the guarantee
   int raised_v = 0;                ///< times nv was raised above max(column_counts)
@@ -63,6 +97,12 @@ struct FitReport {
   long solves = 0;      ///< least-squares solves made by the count searches
   double roundoff = 0;  ///< absolute round-off allowance used at T = 0
   double seconds = 0;
+  FitMethod method = FitMethod::kSfit01;  ///< the method that made the surface
+  FitNorm norm = FitNorm::kL2;            ///< the norm that made it (kL2 or kLinf)
+  long pairs_tried = 0;                   ///< (nu, nv) pairs the surface search solved at
+  /// Why the surface search stopped where it did (empty for kSfit01), e.g. "minimal": at the
+  /// chosen pair one fewer in either direction fails; "sfit01": nothing smaller held.
+  std::string stop_reason;
 };
 
 struct FitResult {
@@ -80,7 +120,13 @@ void validate(const Rows& rows, const FitOptions& options);
 /// front end is kDefaultToleranceFraction, sfit/fit_limits.h).
 Point relative_tolerance(const Rows& rows, double fraction);
 
-/// The whole method: curve stage on each row (minimal count within T/2), re-representation on
+/// Fits with options.method. kSurface (default, docs/control-points.md): the kSfit01 fit
+/// below gives a pair that holds; then, for each parameter rule, the tensor-product fit over
+/// all points at once is searched for the fewest nu x nv that hold T per axis at every point
+/// (checked on the finished surface, as below, and guarded against swings between points);
+/// the smallest wins, the kSfit01 surface where nothing smaller holds.
+///
+/// kSfit01, the paper's method: curve stage on each row (minimal count within T/2), re-representation on
 /// the common count nu, transverse stage on the nu columns of control points (minimal count
 /// within T/2), re-representation on nv, assembly, and the check of every data point.
 ///

@@ -30,6 +30,8 @@ std::string_view to_string(Parametrization p) {
       return "centripetal";
     case Parametrization::kFewest:
       return "fewest";
+    case Parametrization::kAuto:
+      return "auto";
   }
   return "paper";
 }
@@ -37,7 +39,7 @@ std::string_view to_string(Parametrization p) {
 bool parse_parametrization(std::string_view name, Parametrization& out) {
   for (Parametrization p :
        {Parametrization::kPaper, Parametrization::kUniform, Parametrization::kChord,
-        Parametrization::kCentripetal, Parametrization::kFewest})
+        Parametrization::kCentripetal, Parametrization::kFewest, Parametrization::kAuto})
     if (name == to_string(p)) {
       out = p;
       return true;

@@ -9,11 +9,19 @@
 
 namespace sfit::detail {
 
+/// FitMethod::kSurface (surface_method.cpp).
+FitResult fit_surface_search(const Rows& rows, const FitOptions& options);
+
 class SurfaceFitter {
  public:
-  explicit SurfaceFitter(FitOptions options) : o_(std::move(options)) {}
+  /// kAuto parameters are the paper's for kSfit01 (SFIT01's rule).
+  explicit SurfaceFitter(FitOptions options) : o_(std::move(options)) {
+    if (o_.method == FitMethod::kSfit01 && o_.parametrization == Parametrization::kAuto)
+      o_.parametrization = Parametrization::kPaper;
+  }
 
-  /// The whole method on `rows` (fit_surface()).
+  /// The whole method on `rows` (fit_surface()); for FitMethod::kSurface the surface search
+  /// (fit_surface_search(); update() then refits in full: the same result as fit_surface()).
   FitResult fit(const Rows& rows);
   /// The same result as fit(rows) after the rows in `changed` were edited (the number of rows
   /// unchanged), refitting only what the edit touches: the edited rows, later rows of their

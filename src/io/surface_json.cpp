@@ -61,6 +61,10 @@ json report_to_json(const FitReport& r) {
   j["tightenings"] = r.tightenings;
   j["solves"] = r.solves;
   j["roundoff"] = r.roundoff;
+  j["method"] = std::string(to_string(r.method));
+  j["norm"] = std::string(to_string(r.norm));
+  j["pairs_tried"] = r.pairs_tried;
+  j["stop_reason"] = r.stop_reason;
   return j;
 }
 

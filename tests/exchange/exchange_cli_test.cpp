@@ -43,7 +43,7 @@ TEST(ExchangeCli, OneFitWritesEveryFormat) {
   EXPECT_NE(obj.find("\nf 1//1 "), std::string::npos);
   EXPECT_EQ(obj.find("cstype"), std::string::npos);
   const auto m = run_cli("fit " + q(test::example("d150_wing.rows")) +
-                         " --closed u --obj-freeform -o " + q(dir + "/free.obj"));
+                         " --closed u --method sfit01 --obj-freeform -o " + q(dir + "/free.obj"));
   ASSERT_EQ(m.exit_code, 0) << m.err;
   EXPECT_NE(test::read_file(dir + "/free.obj").find("cstype bspline"), std::string::npos);
   EXPECT_NE(m.err.find("(free-form B-spline surface, 14 x 4 control points"), std::string::npos)

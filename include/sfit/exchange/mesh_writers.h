@@ -11,7 +11,7 @@
 namespace sfit::exchange {
 
 /// The exact surface as Wavefront OBJ free-form geometry: `v` lines for the control points
-/// in SURFACE_JSON's full storage (u fastest), `cstype bspline`, `deg p q`,
+/// in the full storage of docs/surface-json.md (u fastest), `cstype bspline`, `deg p q`,
 /// `surf u0 u1 v0 v1` with the control-vertex references, `parm u`/`parm v` with the full
 /// knot vectors, `end`. In a periodic direction the wrap-around references repeat the indices
 /// of the first control points, so the closure is exact and explicit.

@@ -1,0 +1,33 @@
+// The frame the fit methods share (private): validation is sfit::validate(); here the thread
+// count, the data's box, the clock and the guards every candidate surface must pass.
+#pragma once
+
+#include "sfit/rows.h"
+#include "sfit/surface.h"
+#include "sfit/surface_fit.h"
+
+namespace sfit::detail {
+
+/// Threads for a fit of `rows`: 1 below 20000 points, else resolve_threads(requested).
+int threads_for(const Rows& rows, int requested);
+/// bounding_box() in fixed blocks (the same for any thread count).
+BoundingBox box_of(const Rows& rows, int threads);
+/// Seconds on the steady clock.
+double now();
+
+/// Whether a surface stays near its data between the points it was checked at: every control
+/// point within the data's box grown by its diagonal, and the surface, sampled 4 times per
+/// knot span each way, within the box grown by 1/10 of it.
+bool stays_near_the_data(const Surface& s, const BoundingBox& box);
+
+/// A check on a candidate surface beyond its data points (the final check covers those).
+struct Guard {
+  const char* name;
+  bool (*check)(const Surface& s, const BoundingBox& box);
+};
+/// Runs every guard (fit_frame.cpp lists them) on `s` (in the coordinates of `box`); the name
+/// of the first that fails, nullptr when all pass. Every method calls this on the surface it
+/// would return and on every candidate it keeps.
+const char* failed_guard(const Surface& s, const BoundingBox& box);
+
+}  // namespace sfit::detail

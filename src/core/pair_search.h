@@ -1,0 +1,60 @@
+// The search over pairs of counts (nu, nv) for the fewest nu x nv that hold, separated from
+// the solver that says whether a pair holds (docs/control-points.md). Private.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+
+namespace sfit::detail {
+
+/// What a solver says about one pair.
+struct PairVerdict {
+  bool holds = false;
+  /// Worst |S - D| / T over the points and axes (infinite where no surface was made).
+  double ratio = 0;
+};
+
+/// A memo of verdicts around a solver: each pair is solved once.
+class PairOracle {
+ public:
+  explicit PairOracle(std::function<PairVerdict(int, int)> solve) : solve_(std::move(solve)) {}
+  const PairVerdict& operator()(int nu, int nv);
+  bool known(int nu, int nv) const { return memo_.count({nu, nv}) > 0; }
+  const PairVerdict* find(int nu, int nv) const {
+    auto it = memo_.find({nu, nv});
+    return it == memo_.end() ? nullptr : &it->second;
+  }
+  long tried() const { return static_cast<long>(memo_.size()); }
+
+ private:
+  std::function<PairVerdict(int, int)> solve_;
+  std::map<std::pair<int, int>, PairVerdict> memo_;
+};
+
+struct PairRange {
+  int min_u, max_u, min_v, max_v;
+};
+
+struct PairChoice {
+  int nu = 0, nv = 0;  ///< 0: no pair below `bound` held
+  std::string stop;    ///< why the search stopped there
+};
+
+/// The pair with the fewest nu x nv < bound that holds (the first found on a tie).
+/// Assumes holding is close to monotone in each count (more control points do not hold
+/// worse); where it is not, the result is still a pair that holds, and the last step, a
+/// descent to (nu - 1, nv) or (nu, nv - 1) while either holds, leaves a pair where one fewer
+/// in either direction fails (stop "minimal").
+/// For nv along a geometric sequence, and then every nv between two of them whose bound on the
+/// product can still beat the best, the smallest nu that holds (bisection below the previous
+/// nv's, and below bound / nv).
+PairChoice search_pairs(const PairRange& range, long bound, PairOracle& holds);
+
+/// From a pair that holds under `oracle`, steps to (nu - 1, nv) or (nu, nv - 1) while either
+/// holds (only pairs `worth_trying` are asked). Returns the pair reached.
+std::pair<int, int> descend(int nu, int nv, const PairRange& range, PairOracle& oracle,
+                            const std::function<bool(int, int)>& worth_trying = {});
+
+}  // namespace sfit::detail

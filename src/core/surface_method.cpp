@@ -1,0 +1,470 @@
+// FitMethod::kSurface (docs/control-points.md): the tensor-product fit over all points at once
+// (tensor_lsq.h, minimax.h), searched for the fewest nu x nv that hold (pair_search.h), in the
+// frame (fit_frame.h): validated once, centred, every candidate checked at every data point
+// at the full T per axis and guarded between the points; never more control points than the
+// two-stage method (FitMethod::kSfit01), whose fit it starts from.
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <climits>
+#include <optional>
+#include <string>
+
+#include "basis.h"
+#include "deviation.h"
+#include "fit_frame.h"
+#include "minimax.h"
+#include "pair_search.h"
+#include "parallel.h"
+#include "sfit/curve_fit.h"
+#include "sfit/error.h"
+#include "surface_fitter.h"
+#include "tensor_lsq.h"
+
+namespace sfit::detail {
+
+namespace {
+
+// Minimax where least squares misses T by at most this factor (FitNorm::kAuto): the minimax
+// error at a pair is at least the least-squares one divided by sqrt(points), in practice
+// within 10-40 % of it on smooth data (docs/control-points.md measures it).
+constexpr double kLinfReach = 1.25;
+// Minimax fits per rule in the search (each is a linear program per axis).
+constexpr int kLinfTries = 2;
+
+// Pairs whose solve would cost more flops than this are not tried (they count as not
+// holding; the report says how many): the sparse factorisation grows as unknowns x band^2,
+// and a pair that size is far from the fewest control points anyway wherever the two-stage
+// bound leaves room (at 10^6 points, 2 % of them as control points cost ~4e9).
+constexpr double kSolveBudget = 4e9;
+// ... and at most this many flops per data point of the problem (2e8 at least): on a 10^5-point
+// sample, a pair costing more is far above 2 % of the points as control points.
+double solve_budget(std::size_t points) {
+  return std::clamp(2000.0 * static_cast<double>(points), 2e8, kSolveBudget);
+}
+
+// Above this many points the search runs on every step-th point of each row (the positions
+// those points have in the full rows), and its pair is then verified on all points: raised
+// until it holds there, and descended to where one fewer either way fails on all points.
+// The choice is then as minimal as on the full data wherever holding is monotone near it.
+constexpr std::size_t kSearchPoints = 100000;
+
+// Whether every point's distance |S(u, v) - D| (Euclidean, at its parameters) is within
+// `limit`. The per-axis check allows up to sqrt(3) T; the closest-point checker of the peer
+// benchmark (docs/bench_peers.md) counts a point whose distance to the surface exceeds T, so
+// the search asks this too (the closest distance is at most this one).
+bool distances_within(const Surface& s, const Rows& rows, std::span<const double> u,
+                      std::span<const double> v, double limit, int threads) {
+  std::atomic<bool> ok{true};
+  const std::size_t M = rows.size(), per = 16;
+  parallel_for((M + per - 1) / per, threads, [&](std::size_t b) {
+    std::array<double, kMaxDegree + 1> bu, bv;
+    std::vector<Point> iso(static_cast<std::size_t>(s.count_u));
+    for (std::size_t j = b * per; j < std::min(M, (b + 1) * per) && ok.load(); ++j) {
+      const int fv = eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
+      for (int i = 0; i < s.count_u; ++i) {
+        Point q = Point::Zero();
+        for (int c = 0; c <= s.degree_v; ++c) q += bv[c] * s.at(i, wrap_index(fv + c, s.count_v));
+        iso[i] = q;
+      }
+      const auto row = rows[j];
+      for (std::size_t k = 0; k < row.size(); ++k) {
+        const int fu =
+            eval_basis(s.degree_u, s.count_u, s.periodic_u, u[rows.offsets()[j] + k], bu.data());
+        Point p = Point::Zero();
+        for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[wrap_index(fu + a, s.count_u)];
+        if (!((p - row[k]).norm() <= limit)) {
+          ok.store(false);
+          return;
+        }
+      }
+    }
+  });
+  return ok.load();
+}
+
+// The frame's state for one fit: centred rows, their box, round-off, threads.
+struct Frame {
+  int threads = 1;
+  BoundingBox box, centred_box;
+  Point centre = Point::Zero();
+  double roundoff = 0;
+  Rows centred;
+  Point tolerance = Point::Zero();
+
+  Frame(const Rows& rows, const FitOptions& o) : tolerance(o.tolerance) {
+    threads = threads_for(rows, o.threads);
+    box = box_of(rows, threads);
+    centre = 0.5 * (box.min + box.max);
+    centred_box = BoundingBox{box.min - centre, box.max - centre};
+    roundoff = kRoundoffRelative * box.diagonal();
+    centred = rows;
+    parallel_for(rows.size(), threads, [&](std::size_t j) {
+      for (Point& p : centred.mutable_row(j)) p -= centre;
+    });
+  }
+  // Whether a candidate (centred) holds: every point within T, every guard passed.
+  PairVerdict judge(const Surface& s, std::span<const double> u, std::span<const double> v,
+                    DeviationCheck* out = nullptr, const Rows* sample = nullptr) const {
+    const DeviationCheck c =
+        check_deviation(s, sample ? *sample : centred, u, v, tolerance, roundoff, threads);
+    if (out) *out = c;
+    const Rows& r = sample ? *sample : centred;
+    const double limit = tolerance.minCoeff() + roundoff;
+    return {
+        c.within && distances_within(s, r, u, v, limit, threads) && !failed_guard(s, centred_box),
+        c.worst_ratio};
+  }
+};
+
+// A surface the search made: its rule, norm and where the search stopped.
+struct Candidate {
+  Parametrization rule = Parametrization::kUniform;
+  FitNorm norm = FitNorm::kL2;
+  int nu = 0, nv = 0;
+  std::string stop;
+};
+
+std::vector<Parametrization> rules_of(Parametrization p) {
+  if (p == Parametrization::kAuto || p == Parametrization::kFewest)
+    return {Parametrization::kUniform, Parametrization::kChord, Parametrization::kCentripetal,
+            Parametrization::kPaper};
+  return {p};
+}
+
+TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads) {
+  return TensorSpec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, rule, threads};
+}
+
+// The surface at one pair by one norm (centred), or nullopt where none was made.
+std::optional<Surface> solve_pair(TensorProblem& prob, FitNorm norm, int nu, int nv,
+                                  const Point& tolerance) {
+  Surface s;
+  if (!prob.solve(nu, nv, s)) return std::nullopt;
+  if (norm == FitNorm::kLinf) {
+    if (!minimax_refine(prob.rows(), prob.u_at(nu), prob.v_at(nv), tolerance, s))
+      return std::nullopt;
+  }
+  return s;
+}
+
+FitResult assemble(const Frame& fr, Surface s, std::vector<double> u, std::vector<double> v,
+                   const DeviationCheck& c, const FitOptions& o) {
+  FitResult out;
+  for (Point& p : s.control) p += fr.centre;
+  out.surface = std::move(s);
+  out.u = std::move(u);
+  out.v = std::move(v);
+  FitReport& r = out.report;
+  r.points = fr.centred.total_points();
+  r.rows = fr.centred.size();
+  r.tolerance = o.tolerance;
+  r.max_deviation = c.max_deviation;
+  r.worst_row = c.worst_row;
+  r.worst_index = c.worst_index;
+  r.worst_deviation = c.worst_deviation;
+  r.within_tolerance = c.within;
+  r.count_u = out.surface.count_u;
+  r.count_v = out.surface.count_v;
+  r.degree_u = o.degree_u;
+  r.degree_v = o.degree_v;
+  r.closed_u = o.closed_u;
+  r.closed_v = o.closed_v;
+  r.roundoff = fr.roundoff;
+  r.method = FitMethod::kSurface;
+  return out;
+}
+
+void check_counts(const FitOptions& o) {
+  const auto& c = *o.counts;
+  const int lo[2] = {o.degree_u + 1, o.degree_v + 1};
+  for (int a = 0; a < 2; ++a)
+    if (c[a] < lo[a] || c[a] > 1000000)
+      throw Error(ErrorCode::kUsage,
+                  std::string("counts: ") + "uv"[a] + " count " + std::to_string(c[a]) +
+                      " must be degree + 1 (" + std::to_string(lo[a]) + ") ... 1000000",
+                  Place{.option = "counts"}, {static_cast<double>(c[a])});
+  if (static_cast<double>(c[0]) * c[1] > 1e7)
+    throw Error(ErrorCode::kUsage, "counts: more than 10^7 control points",
+                Place{.option = "counts"}, {static_cast<double>(c[0]), static_cast<double>(c[1])});
+}
+
+// FitOptions::counts: the surface at exactly that pair, the first rule that holds (else the
+// one closest to holding); minimax where least squares does not hold and the norm allows.
+FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0) {
+  check_counts(o);
+  const Frame fr(rows, o);
+  const int nu = (*o.counts)[0], nv = (*o.counts)[1];
+  std::optional<Surface> best;
+  std::vector<double> best_u, best_v;
+  DeviationCheck best_check;
+  PairVerdict best_verdict{false, 0};
+  Parametrization best_rule = Parametrization::kUniform;
+  FitNorm best_norm = FitNorm::kL2;
+  long tried = 0;
+  for (Parametrization rule : rules_of(o.parametrization)) {
+    TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads));
+    for (FitNorm norm : {FitNorm::kL2, FitNorm::kLinf}) {
+      // kL2: least squares only; kLinf: minimax (least squares only where the minimax does
+      // not hold, to return a surface); kAuto: minimax where this rule's least squares
+      // missed T by at most kLinfReach.
+      if (norm == FitNorm::kLinf && o.norm == FitNorm::kL2) continue;
+      if (norm == FitNorm::kLinf && o.norm == FitNorm::kAuto &&
+          (best_verdict.holds || !best || best_rule != rule || best_verdict.ratio > kLinfReach))
+        continue;
+      if (norm == FitNorm::kLinf && !minimax_affordable(fr.centred.total_points(), nu, nv))
+        continue;
+      ++tried;
+      auto s = solve_pair(prob, norm, nu, nv, o.tolerance);
+      if (!s) continue;
+      DeviationCheck c;
+      const std::vector<double> v = prob.v_at(nv);
+      const PairVerdict verdict = fr.judge(*s, prob.u_at(nu), v, &c);
+      if (!best || (verdict.holds && !best_verdict.holds) ||
+          (verdict.holds == best_verdict.holds && verdict.ratio < best_verdict.ratio)) {
+        best = std::move(s);
+        best_u = prob.u_at(nu);
+        best_v = v;
+        best_check = c;
+        best_verdict = verdict;
+        best_rule = rule;
+        best_norm = norm;
+      }
+    }
+    if (best_verdict.holds) break;
+  }
+  if (!best)
+    throw Error(ErrorCode::kToleranceNotMet,
+                "no surface with " + std::to_string(nu) + " x " + std::to_string(nv) +
+                    " control points: a knot span has no data",
+                Place{.option = "counts"}, {static_cast<double>(nu), static_cast<double>(nv)});
+  FitResult out =
+      assemble(fr, std::move(*best), std::move(best_u), std::move(best_v), best_check, o);
+  out.report.parametrization = best_rule;
+  out.report.norm = best_norm;
+  out.report.pairs_tried = tried;
+  out.report.stop_reason = "counts given";
+  // A guard's failure makes the surface not hold, as in the search.
+  out.report.within_tolerance = best_verdict.holds;
+  out.report.seconds = now() - t0;
+  return out;
+}
+
+}  // namespace
+
+// A lower bound on the two-stage fit's nu x nv at the paper's rule: its nu is at least every
+// row's count, which is at least the smallest count holding that row within the curve
+// stage's budget (CountSearch::kLinear), and its nv at least degree_v + 1. From 8 rows.
+long sfit01_lower_bound(const Rows& rows, const FitOptions& o) {
+  const double roundoff = kRoundoffRelative * bounding_box(rows).diagonal();
+  CurveFitOptions co;
+  co.degree = o.degree_u;
+  co.periodic = o.closed_u;
+  co.search = CountSearch::kLinear;
+  for (int a = 0; a < 3; ++a)
+    co.bound[a] = o.tolerance[a] > 0 ? std::max(0.5 * o.tolerance[a] * (1 - 1e-9), 0.5 * roundoff)
+                                     : 0.5 * roundoff;
+  const std::size_t M = rows.size(), picks = std::min<std::size_t>(8, M);
+  std::vector<int> counts(picks, 0);
+  parallel_for(picks, threads_for(rows, o.threads), [&](std::size_t p) {
+    const auto row = rows[p * (M - 1) / std::max<std::size_t>(1, picks - 1)];
+    if (row.size() >= static_cast<std::size_t>(o.degree_u + 1))
+      counts[p] = fit_curve(row, co).curve.count();
+  });
+  const int nu = std::max(o.degree_u + 1, *std::max_element(counts.begin(), counts.end()));
+  return static_cast<long>(nu) * (o.degree_v + 1);
+}
+
+FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
+  const double t0 = now();
+  validate(rows, o);
+  if (o.counts) return fit_at_counts(rows, o, t0);
+
+  // The two-stage fit: a pair that holds, so the bound to beat. On large data at the paper's
+  // rule it runs only if the search does not beat a lower bound on its count (its rows'
+  // smallest counts, sfit01_lower_bound()): it costs more than the search there (14 s against
+  // a few on 10^6 ragged points at 1e-3).
+  FitOptions o1 = o;
+  o1.method = FitMethod::kSfit01;
+  if (o1.parametrization == Parametrization::kAuto) o1.parametrization = Parametrization::kPaper;
+  const bool defer_base = rows.total_points() > kSearchPoints &&
+                          o1.parametrization == Parametrization::kPaper &&
+                          !(o.tolerance.array() == 0).all();
+  std::optional<FitResult> base;
+  long bound = LONG_MAX, lower = 0;
+  if (defer_base) {
+    lower = sfit01_lower_bound(rows, o);
+  } else {
+    base = SurfaceFitter(o1).fit(rows);
+    if (base->report.within_tolerance)
+      bound = static_cast<long>(base->surface.count_u) * base->surface.count_v;
+  }
+
+  const Frame fr(rows, o);
+  std::optional<Candidate> best;
+  long tried = 0, over_budget = 0;
+  // At T = 0 only interpolation holds, which the two stages give with the fewest control
+  // points there are (one per point and row where the data is a grid).
+  const bool interpolate = (o.tolerance.array() == 0).all();
+  const std::size_t points = fr.centred.total_points();
+  const std::size_t step =
+      points > kSearchPoints ? (points + kSearchPoints - 1) / kSearchPoints : 1;
+  for (Parametrization rule : rules_of(o.parametrization)) {
+    if (interpolate) break;
+    // Nothing below the bound can hold: the smallest pair is (degree + 1)^2.
+    if (bound <= static_cast<long>(o.degree_u + 1) * (o.degree_v + 1)) break;
+    // The paper's parameters depend on a row's length, so a sample of the row has others:
+    // on large data that rule is the two-stage fit's alone.
+    if (step > 1 && rule == Parametrization::kPaper) continue;
+    TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads));
+    const PairRange range{prob.min_u(), prob.max_u(), prob.min_v(), prob.max_v()};
+    PairOracle l2([&](int nu, int nv) {
+      // More control points than points leave the system singular.
+      if (static_cast<double>(nu) * nv > static_cast<double>(fr.centred.total_points()))
+        return PairVerdict{false, HUGE_VAL};
+      if (prob.cost(nu, nv) > solve_budget(fr.centred.total_points())) {
+        ++over_budget;
+        return PairVerdict{false, HUGE_VAL};
+      }
+      auto s = solve_pair(prob, FitNorm::kL2, nu, nv, o.tolerance);
+      if (!s) return PairVerdict{false, HUGE_VAL};
+      return fr.judge(*s, prob.u_at(nu), prob.v_at(nv));
+    });
+    PairChoice choice;
+    if (step == 1) {
+      choice = search_pairs(range, bound, l2);
+    } else {
+      std::vector<double> sample_positions;
+      const Rows sample = subsample(fr.centred, step, prob.positions_u(), sample_positions);
+      TensorProblem sp(sample, spec_of(o, rule, fr.threads), std::move(sample_positions),
+                       prob.positions_v());
+      PairOracle on_sample([&](int nu, int nv) {
+        if (static_cast<double>(nu) * nv > static_cast<double>(sample.total_points()) ||
+            sp.cost(nu, nv) > solve_budget(sample.total_points()))
+          return PairVerdict{false, HUGE_VAL};
+        auto s = solve_pair(sp, FitNorm::kL2, nu, nv, o.tolerance);
+        if (!s) return PairVerdict{false, HUGE_VAL};
+        return fr.judge(*s, sp.u_at(nu), sp.v_at(nv), nullptr, &sample);
+      });
+      const PairRange sample_range{sp.min_u(), sp.max_u(), sp.min_v(), sp.max_v()};
+      const PairChoice c = search_pairs(sample_range, bound, on_sample);
+      tried += on_sample.tried();
+      if (c.nu > 0) {
+        // Raise until all points hold (the smallest product first), then descend on them.
+        int nu = c.nu, nv = c.nv;
+        bool holds = l2(nu, nv).holds;
+        for (int k = 1; !holds && k <= 16; ++k) {
+          for (const auto& [a, b] :
+               {std::pair{nu + k, nv}, std::pair{nu, nv + k}, std::pair{nu + k, nv + k}}) {
+            if (static_cast<long>(a) * b >= bound || a > range.max_u || b > range.max_v) continue;
+            if (l2(a, b).holds) {
+              nu = a;
+              nv = b;
+              holds = true;
+              break;
+            }
+          }
+        }
+        if (holds) {
+          const auto [mu, mv] = descend(nu, nv, range, l2);
+          choice.nu = mu;
+          choice.nv = mv;
+          choice.stop = "minimal (searched on every " + std::to_string(step) +
+                        "th point of each row, verified on all)";
+        }
+      }
+    }
+    tried += l2.tried();
+    std::optional<Candidate> found;
+    if (choice.nu > 0) found = Candidate{rule, FitNorm::kL2, choice.nu, choice.nv, choice.stop};
+    if (o.norm != FitNorm::kL2) {
+      // Minimax from the least-squares choice (or the two-stage pair) downwards, at pairs
+      // where least squares missed T by a little (kAuto) or at all (kLinf).
+      PairOracle linf([&](int nu, int nv) {
+        auto s = solve_pair(prob, FitNorm::kLinf, nu, nv, o.tolerance);
+        if (!s) return PairVerdict{false, HUGE_VAL};
+        return fr.judge(*s, prob.u_at(nu), prob.v_at(nv));
+      });
+      int linf_left = kLinfTries;
+      auto worth = [&](int nu, int nv) {
+        if (!minimax_affordable(fr.centred.total_points(), nu, nv)) return false;
+        if (linf.known(nu, nv)) return true;
+        if (linf_left <= 0) return false;
+        if (o.norm == FitNorm::kLinf) return true;
+        const PairVerdict& v = l2(nu, nv);
+        if (v.holds || v.ratio > kLinfReach) return false;
+        --linf_left;
+        return true;
+      };
+      int nu = found ? found->nu : base ? base->surface.count_u : 0;
+      int nv = found ? found->nv : base ? base->surface.count_v : 0;
+      if (!found && (!base || base->report.parametrization != rule)) nu = 0;  // none of the rule
+      if (nu > 0) {
+        const auto [mu, mv] = descend(nu, nv, range, linf, worth);
+        if (static_cast<long>(mu) * mv < static_cast<long>(nu) * nv) {
+          found = Candidate{rule, FitNorm::kLinf, mu, mv,
+                            o.norm == FitNorm::kLinf ? "minimal"
+                                                     : "minimal (minimax tried "
+                                                       "where least squares missed "
+                                                       "T by up to 25 %)"};
+        }
+      }
+      tried += linf.tried();
+    }
+    if (found && static_cast<long>(found->nu) * found->nv < bound) {
+      bound = static_cast<long>(found->nu) * found->nv;
+      best = found;
+    }
+  }
+  std::string deferred;
+  if (defer_base) {
+    if (best && static_cast<long>(best->nu) * best->nv <= lower) {
+      deferred = "; at most " + std::to_string(lower) +
+                 ", a lower bound on sfit01's count, so sfit01 was not run";
+    } else {
+      base = SurfaceFitter(o1).fit(rows);
+      const long base_size = static_cast<long>(base->surface.count_u) * base->surface.count_v;
+      if (best && base->report.within_tolerance &&
+          base_size <= static_cast<long>(best->nu) * best->nv)
+        best.reset();
+    }
+  }
+  if (!best) {
+    FitResult& b = *base;
+    b.report.method = FitMethod::kSfit01;
+    b.report.pairs_tried = tried;
+    b.report.stop_reason =
+        interpolate ? "sfit01: T = 0 interpolates" : "sfit01: no smaller pair held";
+    if (over_budget > 0)
+      b.report.stop_reason += " (" + std::to_string(over_budget) + " pairs over the solve budget)";
+    b.report.seconds = now() - t0;
+    return std::move(b);
+  }
+  // Remake the winner (deterministic: the same bits as when it was judged) and check it.
+  TensorProblem prob(fr.centred, spec_of(o, best->rule, fr.threads));
+  Surface s = *solve_pair(prob, best->norm, best->nu, best->nv, o.tolerance);
+  std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(best->nv);
+  DeviationCheck c;
+  fr.judge(s, u, v, &c);
+  FitResult out = assemble(fr, std::move(s), std::move(u), std::move(v), c, o);
+  FitReport& r = out.report;
+  r.parametrization = best->rule;
+  r.norm = best->norm;
+  r.pairs_tried = tried;
+  r.stop_reason = best->stop + deferred;
+  if (over_budget > 0)
+    r.stop_reason += " (" + std::to_string(over_budget) + " pairs over the solve budget)";
+  if (base) {
+    r.row_counts = std::move(base->report.row_counts);
+    r.column_counts = std::move(base->report.column_counts);
+    r.raised_u = base->report.raised_u;
+    r.raised_v = base->report.raised_v;
+    r.repaired_rows = base->report.repaired_rows;
+    r.repaired_columns = base->report.repaired_columns;
+    r.solves = base->report.solves;
+  }
+  r.seconds = now() - t0;
+  return out;
+}
+
+}  // namespace sfit::detail

@@ -1,0 +1,351 @@
+#include "tensor_lsq.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "basis.h"
+#include "parallel.h"
+#include "parameters.h"
+
+namespace sfit::detail {
+
+namespace {
+// Moments kept per problem (one entry per nu): a bisection over nu for one nv and the next
+// nv's bisection revisit the same few nu.
+constexpr std::size_t kMomentBytes = std::size_t{256} << 20;
+// Below this bound on the factorisation's flops (cost()), Eigen's simplicial Cholesky.
+constexpr double kSimplicialFlops = 2e8;
+
+// Row j resampled at fraction s of its positions f (ascending; closed rows wrap to point 0).
+Point resample(std::span<const Point> row, std::span<const double> f, double s, bool closed) {
+  const std::size_t n = row.size();
+  if (n == 1) return row[0];
+  const std::size_t k =
+      static_cast<std::size_t>(std::upper_bound(f.begin(), f.end(), s) - f.begin());
+  if (k == 0) return row[0];
+  const double f0 = f[k - 1];
+  const double f1 = k < n ? f[k] : (closed ? 1.0 : f[n - 1]);
+  const Point& p0 = row[k - 1];
+  const Point& p1 = k < n ? row[k] : (closed ? row[0] : row[n - 1]);
+  const double w = f1 > f0 ? (s - f0) / (f1 - f0) : 0.0;
+  return p0 + std::clamp(w, 0.0, 1.0) * (p1 - p0);
+}
+}  // namespace
+
+std::vector<double> positions_across(const Rows& rows, const std::vector<double>& positions_u,
+                                     Parametrization rule, bool closed_u, bool closed_v) {
+  const std::size_t M = rows.size();
+  std::vector<Point> column(M);
+  if (rule == Parametrization::kUniform || rule == Parametrization::kPaper)
+    return normalized_positions(column, Parametrization::kUniform, closed_v);
+  std::size_t lo = rows[0].size(), hi = lo;
+  for (std::size_t j = 0; j < M; ++j) {
+    lo = std::min(lo, rows[j].size());
+    hi = std::max(hi, rows[j].size());
+  }
+  const bool grid = lo == hi;
+  const std::size_t K = grid ? lo : std::clamp<std::size_t>(lo, 2, 64);
+  std::vector<double> sum(M, 0.0);
+  std::size_t used = 0;
+  for (std::size_t k = 0; k < K; ++k) {
+    const double s = closed_u ? static_cast<double>(k) / K : static_cast<double>(k) / (K - 1);
+    for (std::size_t j = 0; j < M; ++j) {
+      const auto row = rows[j];
+      column[j] = grid ? row[k]
+                       : resample(row,
+                                  std::span<const double>(positions_u.data() + rows.offsets()[j],
+                                                          row.size()),
+                                  s, closed_u);
+    }
+    bool coincide = true;
+    for (const Point& p : column) coincide = coincide && p == column[0];
+    if (coincide) continue;
+    const auto f = normalized_positions(column, rule, closed_v);
+    for (std::size_t j = 0; j < M; ++j) sum[j] += f[j];
+    ++used;
+  }
+  if (used == 0) return normalized_positions(column, Parametrization::kUniform, closed_v);
+  for (double& f : sum) f /= static_cast<double>(used);
+  if (!closed_v) sum.back() = 1.0;
+  sum.front() = 0.0;
+  return sum;
+}
+
+struct TensorProblem::Moments {
+  int nu = 0;
+  std::vector<double> u;     // per point
+  std::vector<double> gram;  // per row (one when shared): nu x (degree_u + 1), G(i, i + d)
+  std::vector<Point> rhs;    // per row: nu, B^T D
+  std::size_t bytes() const {
+    return sizeof(double) * (u.size() + gram.size()) + sizeof(Point) * rhs.size();
+  }
+};
+
+TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec) : rows_(rows), spec_(spec) {
+  const std::size_t M = rows.size();
+  std::size_t lo = rows[0].size(), hi = lo;
+  for (std::size_t j = 0; j < M; ++j) {
+    lo = std::min(lo, rows[j].size());
+    hi = std::max(hi, rows[j].size());
+  }
+  max_u_ = std::max<int>(min_u(), static_cast<int>(hi));
+  max_v_ = std::max<int>(min_v(), static_cast<int>(M));
+  shared_u_ =
+      lo == hi && (spec.rule == Parametrization::kPaper || spec.rule == Parametrization::kUniform);
+  if (spec.rule != Parametrization::kPaper) {
+    positions_u_.resize(rows.total_points());
+    parallel_for(M, spec.threads, [&](std::size_t j) {
+      const auto f = normalized_positions(rows[j], spec.rule, spec.closed_u);
+      std::copy(f.begin(), f.end(), positions_u_.begin() + rows.offsets()[j]);
+    });
+    positions_v_ = positions_across(rows, positions_u_, spec.rule, spec.closed_u, spec.closed_v);
+  }
+}
+
+TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec,
+                             std::vector<double> positions_u, std::vector<double> positions_v)
+    : rows_(rows), spec_(spec) {
+  std::size_t hi = 0;
+  for (std::size_t j = 0; j < rows.size(); ++j) hi = std::max(hi, rows[j].size());
+  max_u_ = std::max<int>(min_u(), static_cast<int>(hi));
+  max_v_ = std::max<int>(min_v(), static_cast<int>(rows.size()));
+  shared_u_ = false;
+  positions_u_ = std::move(positions_u);
+  positions_v_ = std::move(positions_v);
+}
+
+Rows subsample(const Rows& rows, std::size_t step, const std::vector<double>& positions,
+               std::vector<double>& sub_positions) {
+  Rows out;
+  sub_positions.clear();
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto row = rows[j];
+    for (std::size_t k = 0; k < row.size(); ++k)
+      if (k % step == 0 || k + 1 == row.size()) {
+        out.push_point(row[k]);
+        if (!positions.empty()) sub_positions.push_back(positions[rows.offsets()[j] + k]);
+      }
+    out.end_row();
+  }
+  return out;
+}
+
+TensorProblem::~TensorProblem() = default;
+
+std::vector<double> TensorProblem::v_at(int nv) const {
+  const int M = static_cast<int>(rows_.size());
+  if (spec_.rule == Parametrization::kPaper)
+    return paper_parameters(spec_.degree_v, nv, spec_.closed_v, M);
+  return scaled_parameters(spec_.degree_v, nv, spec_.closed_v, positions_v_);
+}
+
+const std::vector<double>& TensorProblem::u_at(int nu) {
+  return moments(nu).u;
+}
+
+const TensorProblem::Moments& TensorProblem::moments(int nu) {
+  auto it = cache_.find(nu);
+  if (it != cache_.end()) return *it->second;
+  auto m = std::make_unique<Moments>();
+  m->nu = nu;
+  const int p = spec_.degree_u, w = p + 1;
+  const std::size_t M = rows_.size();
+  const auto& off = rows_.offsets();
+  m->u.resize(rows_.total_points());
+  const std::size_t n_gram = shared_u_ ? 1 : M;
+  m->gram.assign(n_gram * nu * w, 0.0);
+  m->rhs.assign(M * nu, Point::Zero());
+  parallel_for(M, spec_.threads, [&](std::size_t j) {
+    const auto row = rows_[j];
+    const int n = static_cast<int>(row.size());
+    const std::vector<double> t =
+        spec_.rule == Parametrization::kPaper
+            ? paper_parameters(p, nu, spec_.closed_u, n)
+            : scaled_parameters(p, nu, spec_.closed_u,
+                                std::span<const double>(positions_u_.data() + off[j], n));
+    std::copy(t.begin(), t.end(), m->u.begin() + off[j]);
+    const bool gram_here = !shared_u_ || j == 0;
+    double* G = gram_here ? &m->gram[(shared_u_ ? 0 : j) * nu * w] : nullptr;
+    Point* R = &m->rhs[j * nu];
+    std::array<double, kMaxDegree + 1> b;
+    for (int k = 0; k < n; ++k) {
+      const int f = eval_basis(p, nu, spec_.closed_u, t[k], b.data());
+      for (int a = 0; a < w; ++a) {
+        const int i = wrap_index(f + a, nu);
+        R[i] += b[a] * row[k];
+        if (G)
+          for (int d = 0; a + d < w; ++d) G[i * w + d] += b[a] * b[a + d];
+      }
+    }
+  });
+  if (cache_bytes_ + m->bytes() > kMomentBytes) {
+    cache_.clear();
+    cache_bytes_ = 0;
+  }
+  cache_bytes_ += m->bytes();
+  return *cache_.emplace(nu, std::move(m)).first->second;
+}
+
+double TensorProblem::cost(int nu, int nv) const {
+  const double n = static_cast<double>(nu) * nv;
+  if (shared_u_)  // separable: two banded factorisations and passes over the coefficients
+    return 3.0 * (spec_.degree_u + spec_.degree_v + 2) *
+           (n + static_cast<double>(nu) * rows_.size());
+  const double band = std::min(static_cast<double>(nu) * spec_.degree_v + spec_.degree_u,
+                               static_cast<double>(nv) * spec_.degree_u + spec_.degree_v) +
+                      1;
+  return n * band * band;
+}
+
+namespace {
+
+// The symmetric banded matrix sum over equations of b b^T for a curve (count unknowns,
+// width = degree + 1, cyclic when periodic) from its band G(i, i + d), as a sparse matrix.
+Eigen::SparseMatrix<double> band_matrix(const double* G, int count, int width, bool periodic) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < count; ++i)
+    for (int d = 0; d < width; ++d) {
+      if (!periodic && i + d >= count) break;
+      const int c = (i + d) % count;
+      if (G[i * width + d] == 0.0) continue;
+      t.emplace_back(std::min(i, c), std::max(i, c), G[i * width + d]);
+    }
+  Eigen::SparseMatrix<double> A(count, count);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+}  // namespace
+
+// Rows sharing their u (one G): the least squares separates (Kronecker). With R^T R = G and
+// c_j = G^-1 B^T D_j (each row's own fit at nu), sum_j |B (X b_j) - D_j|^2 = sum_j
+// |R (X b_j - c_j)|^2 + const = |R (X Bv^T - C)|^2 + const, least for X = C Bv (Bv^T Bv)^-1
+// whatever R is: every row's fit, then every column of coefficients fitted across the rows.
+bool TensorProblem::solve_separable(int nu, int nv, Surface& out) {
+  const Moments& m = moments(nu);
+  const int pu = spec_.degree_u, pv = spec_.degree_v, wv = pv + 1;
+  const int M = static_cast<int>(rows_.size());
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Upper> gu(
+      band_matrix(m.gram.data(), nu, pu + 1, spec_.closed_u));
+  if (gu.info() != Eigen::Success) return false;
+  Eigen::MatrixXd R(nu, 3 * M);
+  for (int j = 0; j < M; ++j)
+    for (int i = 0; i < nu; ++i) R.block<1, 3>(i, 3 * j) = m.rhs[j * nu + i].transpose();
+  const Eigen::MatrixXd C = gu.solve(R);  // column 3j + a: row j's coefficients, axis a
+  const std::vector<double> v = v_at(nv);
+  std::vector<double> H(static_cast<std::size_t>(nv) * wv, 0.0);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv, 3 * nu);
+  std::array<double, kMaxDegree + 1> bv;
+  for (int j = 0; j < M; ++j) {
+    const int fv = eval_basis(pv, nv, spec_.closed_v, v[j], bv.data());
+    for (int a = 0; a < wv; ++a) {
+      const int l = wrap_index(fv + a, nv);
+      for (int d = 0; a + d < wv; ++d) H[l * wv + d] += bv[a] * bv[a + d];
+      for (int i = 0; i < nu; ++i)
+        for (int x = 0; x < 3; ++x) rhs(l, 3 * i + x) += bv[a] * C(i, 3 * j + x);
+    }
+  }
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Upper> gv(
+      band_matrix(H.data(), nv, wv, spec_.closed_v));
+  if (gv.info() != Eigen::Success) return false;
+  const Eigen::MatrixXd X = gv.solve(rhs);  // X(l, 3i + a)
+  if (!X.allFinite()) return false;
+  out.degree_u = pu;
+  out.degree_v = pv;
+  out.periodic_u = spec_.closed_u;
+  out.periodic_v = spec_.closed_v;
+  out.count_u = nu;
+  out.count_v = nv;
+  out.control.resize(static_cast<std::size_t>(nu) * nv);
+  for (int i = 0; i < nu; ++i)
+    for (int l = 0; l < nv; ++l)
+      out.at(i, l) = Point(X(l, 3 * i), X(l, 3 * i + 1), X(l, 3 * i + 2));
+  return true;
+}
+
+bool TensorProblem::solve(int nu, int nv, Surface& out) {
+  if (shared_u_) return solve_separable(nu, nv, out);
+  const Moments& m = moments(nu);
+  const int pu = spec_.degree_u, pv = spec_.degree_v, wu = pu + 1, wv = pv + 1;
+  const int sv = 2 * pv + 1;  // l' - l + pv
+  const std::size_t n = static_cast<std::size_t>(nu) * nv;
+  const std::vector<double> v = v_at(nv);
+  // A((i, l), (i + d, l')) at st[((i * nv + l) * wu + d) * sv + (l' - l + pv)], d >= 0; for
+  // d = 0 only l' >= l. Unknown (i, l) is number i * nv + l, the Surface's order.
+  std::vector<double> st(n * wu * sv, 0.0);
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(n), 3);
+  std::array<double, kMaxDegree + 1> bv;
+  for (std::size_t j = 0; j < rows_.size(); ++j) {
+    const int fv = eval_basis(pv, nv, spec_.closed_v, v[j], bv.data());
+    const double* G = &m.gram[(shared_u_ ? 0 : j) * nu * wu];
+    const Point* R = &m.rhs[j * nu];
+    for (int a = 0; a < wv; ++a) {
+      const int l = wrap_index(fv + a, nv);
+      for (int i = 0; i < nu; ++i) rhs.row(i * nv + l) += bv[a] * R[i].transpose();
+      for (int b = 0; b < wv; ++b) {
+        const double wab = bv[a] * bv[b];
+        const int dl = b - a + pv;
+        for (int i = 0; i < nu; ++i) {
+          double* S = &st[((static_cast<std::size_t>(i) * nv + l) * wu) * sv + dl];
+          const double* g = &G[i * wu];
+          if (b >= a) S[0] += wab * g[0];
+          for (int d = 1; d < wu; ++d) S[d * sv] += wab * g[d];
+        }
+      }
+    }
+  }
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(n * wu * sv);
+  for (int i = 0; i < nu; ++i)
+    for (int l = 0; l < nv; ++l) {
+      const long r = static_cast<long>(i) * nv + l;
+      for (int d = 0; d < wu; ++d) {
+        if (!spec_.closed_u && i + d >= nu) break;
+        const int i2 = (i + d) % nu;
+        for (int e = 0; e < sv; ++e) {
+          const double x = st[((static_cast<std::size_t>(r)) * wu + d) * sv + e];
+          if (x == 0.0) continue;
+          int l2 = l + e - pv;
+          if (l2 < 0 || l2 >= nv) {
+            if (!spec_.closed_v) continue;
+            l2 = (l2 + nv) % nv;
+          }
+          const long c = static_cast<long>(i2) * nv + l2;
+          trip.emplace_back(std::min(r, c), std::max(r, c), x);
+        }
+      }
+    }
+  Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  A.setFromTriplets(trip.begin(), trip.end());
+  Eigen::MatrixX3d x;
+  if (cost(nu, nv) < kSimplicialFlops) {
+    // Small systems: Eigen's simplicial factorisation. CHOLMOD's supernodal one starts
+    // OpenMP threads and BLAS calls whose overhead was a third of a volcano fit at 1e-3.
+    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt(A);
+    if (llt.info() != Eigen::Success) return false;
+    x = llt.solve(rhs);
+    if (llt.info() != Eigen::Success) return false;
+  } else {
+    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
+    llt.cholmod().print = 0;  // a singular system is an answer here ("does not hold")
+    llt.compute(A);
+    if (llt.info() != Eigen::Success) return false;
+    x = llt.solve(rhs);
+    if (llt.info() != Eigen::Success) return false;
+  }
+  if (!x.allFinite()) return false;
+  out.degree_u = pu;
+  out.degree_v = pv;
+  out.periodic_u = spec_.closed_u;
+  out.periodic_v = spec_.closed_v;
+  out.count_u = nu;
+  out.count_v = nv;
+  out.control.resize(n);
+  for (std::size_t k = 0; k < n; ++k) out.control[k] = x.row(static_cast<Eigen::Index>(k));
+  return true;
+}
+
+}  // namespace sfit::detail
