@@ -31,6 +31,7 @@ struct FitArgs {
   std::string closed;
   std::string search = "fast";
   std::string parameters = "paper";
+  std::string seam = "align", orient = "auto";  // docs/seams.md
   int threads = 0;
   bool quiet = false;
   bool mesh = false;
@@ -93,6 +94,12 @@ int run_fit(const FitArgs& a) {
   o.search = a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast;
   parse_parametrization(a.parameters, o.parametrization);  // checked by CLI11
   o.threads = a.threads;
+  if (!parse_seam_mode(a.seam, o.seam))
+    throw Error(ErrorCode::kUsage, "'" + a.seam + "' is not one of align, keep",
+                Place{.option = "--seam"});
+  if (!parse_orient_mode(a.orient, o.orient))
+    throw Error(ErrorCode::kUsage, "'" + a.orient + "' is not one of auto, keep",
+                Place{.option = "--orient"});
   if (a.tol && a.tol_rel)
     throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both",
                 Place{.option = "--tol-rel"});
@@ -221,6 +228,11 @@ void add_fit_command(CLI::App& app, Runner& run) {
                 "point's index; default), uniform (index), chord (chord length), centripetal, or "
                 "fewest (tries the four, keeps the fewest control points)")
       ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest"}));
+  c->add_option("--seam", args->seam,
+                "closed rows: align (default: each row starts where its neighbour starts, "
+                "same direction) or keep (as given: the paper's scheme)");
+  c->add_option("--orient", args->orient,
+                "auto (default: a row running against its neighbour is reversed) or keep");
   c->add_option("--threads", args->threads, "threads (0: all cores); results do not depend on it")
       ->check(CLI::Range(0, 4096));
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");

@@ -9,6 +9,7 @@
 #include "sfit/curve_fit.h"
 #include "sfit/parametrization.h"
 #include "sfit/rows.h"
+#include "sfit/seam_alignment.h"
 #include "sfit/surface.h"
 
 namespace sfit {
@@ -33,6 +34,9 @@ struct FitOptions {
   /// fixed blocks of 16 rows (so the result does not depend on the thread count).
   std::vector<int> row_count_hints, column_count_hints;
   int threads = 0;  ///< 0: all cores; results are identical for any count
+  // Seams and orientation (docs/seams.md). Both keep: the rows are fitted exactly as given.
+  SeamMode seam = SeamMode::kAlign;    ///< closed rows: start where the neighbour starts
+  OrientMode orient = OrientMode::kAuto;  ///< rows running against their neighbour are reversed
   /// Called between stages: (stage name, items done, items in the stage).
   std::function<void(std::string_view, std::size_t, std::size_t)> progress;
 };
@@ -62,6 +66,11 @@ struct FitReport {
   long solves = 0;      ///< least-squares solves made by the count searches
   double roundoff = 0;  ///< absolute round-off allowance used at T = 0
   double seconds = 0;
+  // Seams and shape measures (docs/seams.md).
+  std::vector<RowSeam> seams;  ///< each row's start and direction as fitted; empty: as given
+  double box_excursion = 0;    ///< largest distance of the sampled surface outside the data's box
+  double fold = 0;             ///< how far the surface doubles back between rows (fold_check.h)
+  double row_gap = 0;  ///< largest distance, sampled between rows, to the nearer data row
 };
 
 struct FitResult {

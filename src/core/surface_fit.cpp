@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "aligned_fit.h"
 #include "parallel.h"
 #include "sfit/basis.h"
 #include "sfit/deviation.h"
@@ -461,17 +462,23 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
 
   // Positions of the points along their rows (none for the paper's rule): METHOD.md 7.4.
   const bool geometric = rule_ != Parametrization::kPaper;
+  // [seams hook] Fractional seams (RowSeam::offset): positions measured from each row's seam
+  // (the paper's rule then uses uniform positions, its own to rounding).
+  const bool seam_positions = !row_seam_offsets_.empty();
+  const bool row_geometric = geometric || seam_positions;
   std::vector<double> row_positions;
-  if (geometric) {
+  if (row_geometric) {
     row_positions.resize(rows.total_points());
     parallel_for(M, threads_, [&](std::size_t j) {
-      const auto f = normalized_positions(rows[j], rule_, o_.closed_u);
+      auto f = normalized_positions(rows[j], geometric ? rule_ : Parametrization::kUniform,
+                                    o_.closed_u);
+      if (seam_positions) shift_positions(f, row_seam_offsets_[j]);
       std::copy(f.begin(), f.end(),
                 row_positions.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[j]));
     });
   }
   auto row_positions_of = [&](std::size_t j) {
-    if (!geometric) return std::span<const double>();
+    if (!row_geometric) return std::span<const double>();
     return std::span<const double>(row_positions.data() + rows.offsets()[j], rows[j].size());
   };
 
@@ -608,6 +615,25 @@ double now() {
 }  // namespace
 
 FitResult SurfaceFitter::fit(const Rows& rows) {
+  // [seams hook] Seam alignment and orientation (seam_alignment.h, docs/seams.md): the fit runs
+  // on the re-ordered rows; u, the worst point and the report refer to the original points.
+  // update() refits in full after an aligned fit (valid_ cleared).
+  if (o_.seam != SeamMode::kKeep || o_.orient != OrientMode::kKeep) {
+    validate(rows, o_);  // errors name the original rows and points
+    const RowAlignment a = alignment_for(rows, o_);
+    if (!a.identity()) {
+      row_seam_offsets_ = seam_offsets(a, o_.closed_u);
+      FitResult r = fit_given(apply_alignment(rows, a));
+      row_seam_offsets_.clear();
+      restore_original_order(r, rows, a);
+      valid_ = false;
+      return r;
+    }
+  }
+  return fit_given(rows);
+}
+
+FitResult SurfaceFitter::fit_given(const Rows& rows) {
   if (o_.parametrization != Parametrization::kFewest) return fit_rule(rows, o_.parametrization);
   // Every rule in turn; the surface with the fewest control points wins (the first rule on a
   // tie, the paper's first). update() then refits in full (valid_ is cleared), which is what
@@ -692,6 +718,8 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   if (!valid_ || rows.size() != centred_.size() || box.min != box_.min || box.max != box_.max ||
       rule_ != o_.parametrization)  // (never equal for kFewest: full refits)
     return fit(rows);
+  // [seams hook] Rows that need re-ordering: a full fit (fit() aligns them).
+  if (!alignment_for(rows, o_).identity()) return fit(rows);
   // Same box, so the same centre, round-off allowance and budget: refresh the edited rows.
   std::vector<char> mark(rows.size(), 0);
   for (std::size_t j : changed) mark.at(j) = 1;

@@ -26,6 +26,7 @@ class SurfaceFitter {
 
  private:
   struct Attempt;
+  FitResult fit_given(const Rows& rows);  // fit() on rows as given (no seam alignment)
   FitResult fit_rule(const Rows& rows, Parametrization requested);
   FitResult fit_with_rule(const Rows& rows);
   Attempt fit_once(const Point& bound, const std::vector<char>* changed);
@@ -49,6 +50,7 @@ class SurfaceFitter {
   std::vector<Rerepresentation> row_curves_;
   int row_common_ = 0;
   std::size_t rows_refitted_ = 0;
+  std::vector<double> row_seam_offsets_;  // [seams] fractional seams of the rows being fitted
 };
 
 }  // namespace sfit::detail

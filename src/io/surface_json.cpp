@@ -58,6 +58,15 @@ json report_to_json(const FitReport& r) {
   j["tightenings"] = r.tightenings;
   j["solves"] = r.solves;
   j["roundoff"] = r.roundoff;
+  // Seams and shape measures (docs/seams.md): rows re-ordered, [row, shift, reversed, offset].
+  json seams = json::array();
+  for (std::size_t k = 0; k < r.seams.size(); ++k)
+    if (r.seams[k].shift != 0 || r.seams[k].reversed || r.seams[k].offset != 0)
+      seams.push_back({k, r.seams[k].shift, r.seams[k].reversed, r.seams[k].offset});
+  j["seams"] = std::move(seams);
+  j["box_excursion"] = r.box_excursion;
+  j["fold"] = r.fold;
+  j["row_gap"] = r.row_gap;
   return j;
 }
 
