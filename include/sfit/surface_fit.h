@@ -68,6 +68,8 @@ struct FitReport {
   double seconds = 0;
   // Seams and shape measures (docs/seams.md).
   std::vector<RowSeam> seams;  ///< each row's start and direction as fitted; empty: as given
+  /// The rule across the rows: `parametrization`, or the one the fold guard chose.
+  Parametrization parametrization_across = Parametrization::kPaper;
   double box_excursion = 0;    ///< largest distance of the sampled surface outside the data's box
   double fold = 0;             ///< how far the surface doubles back between rows (fold_check.h)
   double row_gap = 0;  ///< largest distance, sampled between rows, to the nearer data row

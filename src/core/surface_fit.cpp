@@ -13,6 +13,7 @@
 #include "sfit/basis.h"
 #include "sfit/deviation.h"
 #include "sfit/error.h"
+#include "sfit/fold_check.h"
 #include "sfit/parametrization.h"
 #include "sfit/rerepresent.h"
 #include "surface_fitter.h"
@@ -516,9 +517,11 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
     return std::span<const Point>(columns.data() + i * M, M);
   };
   // One position per row, shared by every column (the guarantee needs one v per row).
+  // [seams hook] The fold guard may set its own rule across the rows (across_).
+  const Parametrization across = across_.value_or(rule_);
   const std::vector<double> column_positions =
-      geometric
-          ? averaged_positions(static_cast<std::size_t>(nu), column_points, rule_, o_.closed_v)
+      across != Parametrization::kPaper
+          ? averaged_positions(static_cast<std::size_t>(nu), column_points, across, o_.closed_v)
           : std::vector<double>();
   auto column_positions_of = [&](std::size_t) { return std::span<const double>(column_positions); };
   report("columns", 0, static_cast<std::size_t>(nu));
@@ -600,8 +603,18 @@ FitResult SurfaceFitter::finish(Attempt& at, int tightenings, const DeviationChe
   r.closed_u = o_.closed_u;
   r.closed_v = o_.closed_v;
   r.parametrization = rule_;
+  r.parametrization_across = across_.value_or(rule_);
   r.tightenings = tightenings;
   r.roundoff = roundoff_;
+  {  // [seams hook] Shape measures (fold_check.h) on the centred surface and rows.
+    const BoundingBox box{box_.min - centre_, box_.max - centre_};
+    Surface centred = out.surface;
+    for (Point& p : centred.control) p -= centre_;
+    const ShapeMeasures m = measure_shape(centred, centred_, out.v, box, o_.closed_u);
+    r.fold = m.fold;
+    r.box_excursion = m.box_excursion;
+    r.row_gap = m.row_gap;
+  }
   r.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count() -
       seconds_start;
@@ -609,6 +622,9 @@ FitResult SurfaceFitter::finish(Attempt& at, int tightenings, const DeviationChe
 }
 
 namespace {
+long size_of(const FitResult& f) {
+  return static_cast<long>(f.surface.count_u) * f.surface.count_v;
+}
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -646,8 +662,11 @@ FitResult SurfaceFitter::fit_given(const Rows& rows) {
     const auto size = [](const FitResult& f) {
       return static_cast<long>(f.surface.count_u) * f.surface.count_v;
     };
-    if (!best || (r.report.within_tolerance && !best->report.within_tolerance) ||
-        (r.report.within_tolerance == best->report.within_tolerance && size(r) < size(*best)))
+    // [seams] Within tolerance first, then fold-free, then the fewest control points.
+    const auto rank = [&](const FitResult& f) {
+      return 2 * !f.report.within_tolerance + folds(f);
+    };
+    if (!best || rank(r) < rank(*best) || (rank(r) == rank(*best) && size(r) < size(*best)))
       best = std::move(r);
   }
   valid_ = false;
@@ -656,6 +675,44 @@ FitResult SurfaceFitter::fit_given(const Rows& rows) {
 }
 
 FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
+  // [seams hook] The fold guard (fold_check.h, docs/seams.md): a surface that doubles back on
+  // itself between rows is refitted with chord-length, then centripetal, positions across the
+  // rows (uneven row spacing at the paper's even v is what folds it); the fold-free one with
+  // the fewest control points wins. Where none is fold-free, the least folded stays and its
+  // report.fold says by how much (the CLI warns).
+  const double t0 = now();
+  FitResult r = fit_rule_unguarded(rows, requested);
+  if (!folds(r)) return r;
+  const Parametrization used = rule_;
+  std::optional<FitResult> best;
+  for (Parametrization across : {Parametrization::kChord, Parametrization::kCentripetal}) {
+    across_ = across;
+    try {
+      FitResult c = fit_rule_unguarded(rows, requested);
+      if (c.report.within_tolerance && !folds(c) && stays_near_the_data(c.surface, box_) &&
+          (!best || size_of(c) < size_of(*best)))
+        best = std::move(c);
+    } catch (const Error& e) {
+      if (e.code() != ErrorCode::kToleranceNotMet) throw;
+    }
+  }
+  across_.reset();
+  valid_ = false;  // update() refits in full
+  if (!best) {
+    rule_ = used;
+    r.report.seconds = now() - t0;
+    return r;
+  }
+  rule_ = best->report.parametrization;
+  best->report.seconds = now() - t0;
+  return std::move(*best);
+}
+
+bool SurfaceFitter::folds(const FitResult& r) const {
+  return r.report.fold > kFoldRelative * box_.diagonal();
+}
+
+FitResult SurfaceFitter::fit_rule_unguarded(const Rows& rows, Parametrization requested) {
   rule_ = requested;
   if (rule_ == Parametrization::kPaper) return fit_with_rule(rows);
   // The geometric rules (METHOD.md 7.4) hold the tolerance on their own where they can; where
@@ -667,7 +724,7 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
   const double t0 = now();
   try {
     FitResult r = fit_with_rule(rows);
-    if (r.report.within_tolerance && stays_near_the_data(r.surface, box_)) {
+    if (r.report.within_tolerance && stays_near_the_data(r.surface, box_) && !folds(r)) {
       r.report.seconds = now() - t0;
       return r;
     }
@@ -739,6 +796,7 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   FitResult out = finish(at, 0, check, t0);
   if (rule_ != Parametrization::kPaper && !stays_near_the_data(out.surface, box_))
     return fit(rows);  // fit() falls back to the paper's rule: do exactly that
+  if (folds(out)) return fit(rows);  // [seams hook] fit() guards against the fold
   valid_ = true;
   return out;
 }

@@ -2,6 +2,7 @@
 // (METHOD.md 7.7). Private: the public faces are fit_surface() and IncrementalFit.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "sfit/rerepresent.h"
@@ -28,6 +29,8 @@ class SurfaceFitter {
   struct Attempt;
   FitResult fit_given(const Rows& rows);  // fit() on rows as given (no seam alignment)
   FitResult fit_rule(const Rows& rows, Parametrization requested);
+  FitResult fit_rule_unguarded(const Rows& rows, Parametrization requested);  // no fold guard
+  bool folds(const FitResult& r) const;
   FitResult fit_with_rule(const Rows& rows);
   Attempt fit_once(const Point& bound, const std::vector<char>* changed);
   FitResult finish(Attempt& at, int tightenings, const struct DeviationCheck& check,
@@ -50,7 +53,8 @@ class SurfaceFitter {
   std::vector<Rerepresentation> row_curves_;
   int row_common_ = 0;
   std::size_t rows_refitted_ = 0;
-  std::vector<double> row_seam_offsets_;  // [seams] fractional seams of the rows being fitted
+  std::vector<double> row_seam_offsets_;
+  std::optional<Parametrization> across_;  // [seams] the fold guard's rule across the rows  // [seams] fractional seams of the rows being fitted
 };
 
 }  // namespace sfit::detail

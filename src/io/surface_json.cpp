@@ -66,6 +66,7 @@ json report_to_json(const FitReport& r) {
   j["seams"] = std::move(seams);
   j["box_excursion"] = r.box_excursion;
   j["fold"] = r.fold;
+  j["parameters_across"] = std::string(to_string(r.parametrization_across));
   j["row_gap"] = r.row_gap;
   return j;
 }
