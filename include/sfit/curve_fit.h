@@ -39,8 +39,11 @@ struct CurveFit {
 /// (normalized_positions()), at their scaled_parameters(). Requires degree+1 <= count <=
 /// points.size() (a periodic fit needs count >= degree + 1 too). Throws Error(kInternal) if
 /// the system is singular, which the paper's parameters rule out (positions may not).
+/// With `weights` (one > 0 per point; empty: all 1) the fit minimises sum w_j |C(t_j) - D_j|^2
+/// (weighted least squares: each equation scaled by sqrt(w_j)).
 CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count,
-                              std::span<const double> positions = {});
+                              std::span<const double> positions = {},
+                              std::span<const double> weights = {});
 
 struct CurveFitOptions {
   int degree = 3;
@@ -55,6 +58,9 @@ struct CurveFitOptions {
   /// The positions are shared by many curves (all columns, rows of one length at uniform
   /// positions): worth caching their factorisations.
   bool shared_positions = false;
+  /// Weights of the points (docs/seams.md): weighted least squares; empty: all 1, and the
+  /// shared factorisations are used. The bound stays a hard bound for every point.
+  std::span<const double> weights;
 };
 
 /// The curve with the smallest count in [degree+1, N] whose fit keeps every point within

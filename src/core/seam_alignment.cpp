@@ -283,8 +283,12 @@ Rows apply_alignment(const Rows& rows, const RowAlignment& a) {
   out.reserve(rows.total_points(), rows.size());
   for (std::size_t j = 0; j < rows.size(); ++j) {
     const auto row = rows[j];
-    for (std::size_t k = 0; k < row.size(); ++k)
-      out.push_point(row[source_index(a.rows[j], row.size(), k)]);
+    const auto w = rows.row_weights(j);
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      const std::size_t i = source_index(a.rows[j], row.size(), k);
+      out.push_point(row[i]);
+      if (!w.empty()) out.push_weight(w[i]);
+    }
     out.end_row();
   }
   return out;

@@ -1,6 +1,8 @@
 #include "sfit/surface_fit.h"
 
 #include <algorithm>
+#include <functional>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -117,6 +119,21 @@ void validate(const Rows& rows, const FitOptions& o) {
                     Place{.row = jl, .point = static_cast<long>(k)},
                     {row[k].x(), row[k].y(), row[k].z()});
   }
+  // [seams] Weights (docs/seams.md): one finite weight > 0 per point, or none.
+  if (rows.weighted()) {
+    if (rows.weights().size() != rows.total_points())
+      throw Error(ErrorCode::kInputData,
+                  "weights: " + std::to_string(rows.weights().size()) + " weights for " +
+                      std::to_string(rows.total_points()) + " points",
+                  Place{}, {static_cast<double>(rows.weights().size())});
+    for (std::size_t j = 0; j < M; ++j) {
+      const auto w = rows.row_weights(j);
+      for (std::size_t k = 0; k < w.size(); ++k)
+        if (!(w[k] > 0) || !std::isfinite(w[k]))
+          throw Error(ErrorCode::kInputData, "weight must be a finite number > 0",
+                      Place{.row = static_cast<long>(j), .point = static_cast<long>(k)}, {w[k]});
+    }
+  }
   // The data must span a surface: not one point, not one straight line; and its size must
   // leave room for squares in double precision (1e-150 ... 1e150; an offset costs nothing).
   const BoundingBox box = box_of(rows, threads);
@@ -179,6 +196,8 @@ namespace detail {
 namespace {
 
 constexpr std::size_t kBlock = 16;  // curves whose searches chain their starting counts
+// [seams] Weights of curve i's points (docs/seams.md); empty function: unweighted.
+using WeightsOf = std::function<std::span<const double>(std::size_t)>;
 
 // The minimal fits of curves `todo` (sorted), each starting from its block predecessor's
 // count (or from `hints`). Fixed blocks make the result independent of the thread count.
@@ -188,7 +207,8 @@ constexpr std::size_t kBlock = 16;  // curves whose searches chain their startin
 template <class GetPoints, class GetPositions>
 std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, GetPositions&& positions_of,
                        const CurveFitOptions& base, const std::vector<int>& hints, int threads,
-                       std::vector<CurveFit>& fits, const std::vector<char>* todo) {
+                       std::vector<CurveFit>& fits, const std::vector<char>* todo,
+                       const WeightsOf& weights_of = {}) {
   const bool have_hints = hints.size() == n_curves;
   const std::size_t n_blocks = (n_curves + kBlock - 1) / kBlock;
   fits.resize(n_curves);
@@ -207,6 +227,7 @@ std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, GetPositions
         CurveFitOptions co = base;
         co.hint = have_hints ? hints[i] : previous;
         co.positions = positions_of(i);
+        if (weights_of) co.weights = weights_of(i);  // [seams] weighted least squares
         fits[i] = fit_curve(points_of(i), co);
         ++fitted[b];
       }
@@ -230,7 +251,7 @@ std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, GetPositions
 // single row of 10^6 points needing 1000 control points is not searched one count at a time.
 template <class GetPoints, class GetPositions>
 void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of, GetPositions&& positions_of,
-                   const CurveFitOptions& base, int threads) {
+                   const CurveFitOptions& base, int threads, const WeightsOf& weights_of = {}) {
   if (base.search != CountSearch::kFast) return;
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < fits.size(); ++i)
@@ -270,6 +291,7 @@ void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of, GetPositi
     parallel_for(next.size(), threads, [&](std::size_t c) {
       CurveFitOptions o = linear;
       o.positions = positions_of(next[c]);
+      if (weights_of) o.weights = weights_of(next[c]);
       linear_fits[c] = fit_curve(points_of(next[c]), o);
     });
     for (std::size_t c = 0; c < next.size(); ++c) {
@@ -294,8 +316,10 @@ void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of, GetPositi
 // (the count's fit is not always within the bound when a smaller one is), rerepresent().
 Rerepresentation represent_one(const CurveFit& fit, std::span<const Point> points,
                                std::span<const double> positions, int degree, int count,
-                               bool periodic, const Point& bound, std::span<const double> target) {
-  if (fit.scaled && !positions.empty() && fit.curve.degree == degree &&
+                               bool periodic, const Point& bound, std::span<const double> target,
+                               bool weighted = false) {
+  // A weighted curve keeps its own fit's shape: re-represented, not refitted unweighted.
+  if (!weighted && fit.scaled && !positions.empty() && fit.curve.degree == degree &&
       points.size() >= static_cast<std::size_t>(count) && fit.curve.count() != count) {
     CurveFit refit;
     try {
@@ -333,7 +357,7 @@ Represented represent(std::size_t n_curves, GetPoints&& points_of, GetPositions&
                       const Point& bound, int threads, bool shared_params, std::size_t max_points,
                       std::span<const double> shared_positions,
                       std::vector<Rerepresentation>* reuse, int reuse_count,
-                      const std::vector<char>* dirty) {
+                      const std::vector<char>* dirty, bool weighted = false) {
   Represented st;
   int common = degree + 1;
   for (const auto& f : fits) common = std::max(common, f.curve.count());
@@ -361,7 +385,8 @@ Represented represent(std::size_t n_curves, GetPoints&& points_of, GetPositions&
         st.curves[i] =
             represent_one(fits[i], points_of(i), positions_of(i), degree, common, periodic, bound,
                           shared_params ? std::span<const double>(st.shared_parameters)
-                                        : std::span<const double>());
+                                        : std::span<const double>(),
+                          weighted);
       }
       if (!st.curves[i].holds) failed.store(true, std::memory_order_relaxed);
     });
@@ -399,6 +424,37 @@ bool stays_near_the_data(const Surface& s, const BoundingBox& box) {
     for (int b = 0; b <= sv; ++b)
       if (!within(s.evaluate(s.u_end() * a / su, s.v_end() * b / sv), 0.1 * d)) return false;
   return true;
+}
+
+// [seams] The weights of the columns' points (control point i of row j at [i * M + j]): the
+// mean weight of row j's points that control point i influences, each counted by its basis
+// value at the point's parameter; the row's mean weight where it influences none. Empty for
+// unweighted rows.
+std::vector<double> control_weights(const Rows& rows, const std::vector<Rerepresentation>& curves,
+                                    int nu, int threads) {
+  if (!rows.weighted()) return {};
+  const std::size_t M = rows.size();
+  std::vector<double> w(static_cast<std::size_t>(nu) * M, 1.0);
+  parallel_for(M, threads, [&](std::size_t j) {
+    const auto pw = rows.row_weights(j);
+    const Curve& c = curves[j].curve;
+    std::vector<double> sum(static_cast<std::size_t>(nu), 0.0), mass(sum);
+    double mean = 0;
+    std::array<double, kMaxDegree + 1> b;
+    for (std::size_t k = 0; k < pw.size(); ++k) {
+      mean += pw[k] / static_cast<double>(pw.size());
+      if (c.degree == 0) continue;
+      const int f = eval_basis(c.degree, nu, c.periodic, curves[j].parameters[k], b.data());
+      for (int a = 0; a <= c.degree; ++a) {
+        const int i = wrap_index(f + a, nu);
+        sum[i] += b[a] * pw[k];
+        mass[i] += b[a];
+      }
+    }
+    for (int i = 0; i < nu; ++i)
+      w[static_cast<std::size_t>(i) * M + j] = mass[i] > 0 ? sum[i] / mass[i] : mean;
+  });
+  return w;
 }
 
 // Positions across the rows for the geometric rules: each column's normalized_positions(),
@@ -490,11 +546,14 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   row_options.shared_positions = rule_ == Parametrization::kUniform;
   std::vector<CurveFit> fits;
   if (changed) fits = row_fits_;
+  // [seams hook] Weighted rows: weighted least squares in the curve stage.
+  const WeightsOf row_weights_of =
+      rows.weighted() ? WeightsOf([&](std::size_t j) { return rows.row_weights(j); }) : WeightsOf();
   rows_refitted_ = fit_curves(M, row_points, row_positions_of, row_options, o_.row_count_hints,
-                              threads_, fits, changed);
+                              threads_, fits, changed, row_weights_of);
   // `fast_fits` (the searches' own results) are what an update chains its hints from.
   std::vector<CurveFit> fast_fits = fits;
-  exact_maximum(fits, row_points, row_positions_of, row_options, threads_);
+  exact_maximum(fits, row_points, row_positions_of, row_options, threads_, row_weights_of);
   // Rows whose fit changed need a new re-representation.
   std::vector<char> dirty(M, 1);
   if (changed)
@@ -505,7 +564,7 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   // Re-representation on the common count nu (METHOD.md 4).
   Represented rs = represent(M, row_points, row_positions_of, fits, o_.degree_u, o_.closed_u, bound,
                              threads_, false, longest, {}, changed ? &row_curves_ : nullptr,
-                             row_common_, changed ? &dirty : nullptr);
+                             row_common_, changed ? &dirty : nullptr, rows.weighted());
   const int nu = rs.common;
 
   // Transverse stage: column i holds control point i of every row curve (METHOD.md 5).
@@ -524,16 +583,24 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
           ? averaged_positions(static_cast<std::size_t>(nu), column_points, across, o_.closed_v)
           : std::vector<double>();
   auto column_positions_of = [&](std::size_t) { return std::span<const double>(column_positions); };
+  // [seams hook] Weights across (docs/seams.md): control point i of row j weighs the mean
+  // weight of the row's points it influences, each counted by its basis value there.
+  const std::vector<double> column_weights = control_weights(rows, rs.curves, nu, threads_);
+  const WeightsOf column_weights_of =
+      column_weights.empty() ? WeightsOf() : WeightsOf([&](std::size_t i) {
+        return std::span<const double>(column_weights.data() + i * M, M);
+      });
   report("columns", 0, static_cast<std::size_t>(nu));
   CurveFitOptions column_options{o_.degree_v, o_.closed_v, bound, o_.search};
   column_options.shared_positions = true;
   std::vector<CurveFit> column_fits;
   fit_curves(static_cast<std::size_t>(nu), column_points, column_positions_of, column_options,
-             o_.column_count_hints, threads_, column_fits, nullptr);
-  exact_maximum(column_fits, column_points, column_positions_of, column_options, threads_);
+             o_.column_count_hints, threads_, column_fits, nullptr, column_weights_of);
+  exact_maximum(column_fits, column_points, column_positions_of, column_options, threads_,
+                column_weights_of);
   Represented cs = represent(static_cast<std::size_t>(nu), column_points, column_positions_of,
                              column_fits, o_.degree_v, o_.closed_v, bound, threads_, true, M,
-                             column_positions, nullptr, 0, nullptr);
+                             column_positions, nullptr, 0, nullptr, rows.weighted());
   report("columns", static_cast<std::size_t>(nu), static_cast<std::size_t>(nu));
   const int nv = cs.common;
 
