@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -13,7 +14,7 @@ namespace sfit {
 namespace {
 
 constexpr int kPerStretch = 16;  // samples between two rows
-constexpr int kGapSamples = 64;  // samples along u for the gap between rows
+constexpr int kGapSamples = 32;  // samples along u for the gap between rows
 
 int spans(int count, int degree, bool periodic) {
   return periodic ? count : count - degree;
@@ -34,6 +35,14 @@ void column_at(const Surface& s, double u, std::vector<Point>& col, std::vector<
       col_u[l] += bu[w + a] * s.at(i, l);
     }
   }
+}
+
+Point column_point(const Surface& s, const std::vector<Point>& col, double v) {
+  std::array<double, kMaxDegree + 1> bv;
+  const int fv = eval_basis(s.degree_v, s.count_v, s.periodic_v, v, bv.data());
+  Point p = Point::Zero();
+  for (int b = 0; b <= s.degree_v; ++b) p += bv[b] * col[wrap_index(fv + b, s.count_v)];
+  return p;
 }
 
 // S, S_u and S_v at v on the column.
@@ -64,57 +73,101 @@ std::vector<std::pair<double, double>> stretches(const Surface& s, std::span<con
   return out;
 }
 
-int u_samples(const Surface& s) {
-  return std::max(64, 8 * spans(s.count_u, s.degree_u, s.periodic_u));
+// 8 per knot span along u, at least 64, within a budget of samples (a 10^6-point fit must not
+// spend more on its measures than on the fit: 2e5 samples cost about 20 ms).
+constexpr double kSampleBudget = 1e5;
+int u_samples(const Surface& s, std::size_t stretches) {
+  const int want = std::max(64, 8 * spans(s.count_u, s.degree_u, s.periodic_u));
+  const double per_column = std::max<double>(1, static_cast<double>(stretches)) * (kPerStretch + 1);
+  return std::clamp(static_cast<int>(kSampleBudget / per_column), 16, want);
 }
 
 template <class Visit>
 double fold_and_visit(const Surface& s, std::span<const double> v, Visit&& visit) {
   const auto st = stretches(s, v);
-  const int nu = u_samples(s);
+  const int nu = u_samples(s, st.size());
   std::vector<Point> col, col_u;
-  std::array<Sample, kPerStretch + 1> q;
+  std::array<Point, kPerStretch + 1> p;
   double fold = 0;
   for (int a = 0; a <= nu; ++a) {
     if (s.periodic_u && a == nu) break;
     column_at(s, s.u_end() * a / nu, col, col_u);
     for (const auto& [v0, v1] : st) {
-      bool reverses = false;
       for (int k = 0; k <= kPerStretch; ++k) {
-        q[k] = column_sample(s, col, col_u, v0 + (v1 - v0) * k / kPerStretch);
-        visit(q[k].p);
-        if (k > 0 && q[k].normal.dot(q[k - 1].normal) < 0) reverses = true;
+        p[k] = column_point(s, col, v0 + (v1 - v0) * k / kPerStretch);
+        visit(p[k]);
       }
-      // A column that turns (a lip, a U-turn of the data) keeps its normal turning smoothly;
-      // one that doubles back on itself reverses it.
-      if (!reverses) continue;
-      const Point chord = q[kPerStretch].p - q[0].p;
+      const Point chord = p[kPerStretch] - p[0];
       const double len = chord.norm();
       if (!(len > 0)) continue;
       const Point dir = chord / len;
-      double reach = 0;
+      double reach = 0, back = 0;
       for (int k = 1; k <= kPerStretch; ++k) {
-        const double x = (q[k].p - q[0].p).dot(dir);
-        fold = std::max(fold, reach - x);
+        const double x = (p[k] - p[0]).dot(dir);
+        back = std::max(back, reach - x);
         reach = std::max(reach, x);
       }
+      if (!(back > fold)) continue;
+      // A column that turns (a lip, a U-turn of the data) keeps its normal turning smoothly;
+      // one that doubles back on itself reverses it. (Normals only where it runs back.)
+      bool reverses = false;
+      Point prev = Point::Zero();
+      for (int k = 0; k <= kPerStretch && !reverses; ++k) {
+        const Point n = column_sample(s, col, col_u, v0 + (v1 - v0) * k / kPerStretch).normal;
+        reverses = k > 0 && n.dot(prev) < 0;
+        prev = n;
+      }
+      if (reverses) fold = back;
     }
   }
   return fold;
 }
 
-double distance_to_polyline(const Point& q, std::span<const Point> row, bool closed) {
+// Distance from q to the polyline of `row`, over the segments within `window` points of
+// point `near` (all of them when the window covers the row).
+double distance_to_polyline(const Point& q, std::span<const Point> row, bool closed,
+                            std::size_t near, std::size_t window) {
   const std::size_t n = row.size();
-  double best = (q - row[0]).squaredNorm();
+  double best = (q - row[near]).squaredNorm();
+  if (n < 2) return std::sqrt(best);
   const std::size_t segments = closed ? n : n - 1;
-  for (std::size_t i = 0; i < segments && n > 1; ++i) {
-    const Point& a = row[i];
-    const Point ab = row[(i + 1) % n] - a;
+  const bool all = 2 * window + 1 >= segments;
+  const long lo = all ? 0 : static_cast<long>(near) - static_cast<long>(window);
+  const long hi = all ? static_cast<long>(segments) - 1 : static_cast<long>(near + window);
+  for (long m = lo; m <= hi; ++m) {
+    long i = m;
+    if (closed) {
+      i %= static_cast<long>(n);
+      if (i < 0) i += static_cast<long>(n);
+    } else if (i < 0 || i >= static_cast<long>(segments)) {
+      continue;
+    }
+    const Point& a = row[static_cast<std::size_t>(i)];
+    const Point ab = row[(static_cast<std::size_t>(i) + 1) % n] - a;
     const double l2 = ab.squaredNorm();
     const double t = l2 > 0 ? std::clamp((q - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
     best = std::min(best, (a + t * ab - q).squaredNorm());
   }
   return std::sqrt(best);
+}
+
+// The point of a row whose parameter is nearest t. The parameters run up along the row,
+// cyclically for a closed one (from the point `first` with the smallest one): binary search.
+std::size_t nearest_parameter(std::span<const double> u, std::size_t first, double t) {
+  const std::size_t n = u.size();
+  auto at = [&](std::size_t k) { return u[(first + k) % n]; };
+  std::size_t lo = 0, hi = n;  // first k with at(k) >= t
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (at(mid) < t) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  if (lo == n) return (first + n - 1) % n;
+  if (lo > 0 && t - at(lo - 1) < at(lo) - t) --lo;
+  return (first + lo) % n;
 }
 
 }  // namespace
@@ -123,21 +176,34 @@ double fold_measure(const Surface& s, std::span<const double> v) {
   return fold_and_visit(s, v, [](const Point&) {});
 }
 
-ShapeMeasures measure_shape(const Surface& s, const Rows& rows, std::span<const double> v,
-                            const BoundingBox& box, bool closed_u) {
+ShapeMeasures measure_shape(const Surface& s, const Rows& rows, std::span<const double> u,
+                            std::span<const double> v, const BoundingBox& box, bool closed_u) {
   ShapeMeasures m;
   m.fold = fold_and_visit(s, v, [&](const Point& p) {
     const Point out = (box.min - p).cwiseMax(p - box.max).cwiseMax(Point::Zero());
     m.box_excursion = std::max(m.box_excursion, out.norm());
   });
-  std::vector<Point> col;
+  // 32 samples per stretch; each searches the two rows' polylines within 1/32 of the row
+  // (at least 8 points) around the point whose parameter is nearest.
   for (std::size_t j = 0; j + 1 < rows.size() && j + 1 < v.size(); ++j) {
     const double mid = 0.5 * (v[j] + v[j + 1]);
+    std::size_t first[2] = {0, 0};
+    for (std::size_t r : {j, j + 1}) {
+      const double* ur = u.data() + rows.offsets()[r];
+      first[r - j] = static_cast<std::size_t>(std::min_element(ur, ur + rows[r].size()) - ur);
+    }
     for (int a = 0; a < kGapSamples; ++a) {
-      const double u = s.u_end() * (a + 0.5) / kGapSamples;
-      const Point q = s.evaluate(u, mid);
-      m.row_gap = std::max(m.row_gap, std::min(distance_to_polyline(q, rows[j], closed_u),
-                                               distance_to_polyline(q, rows[j + 1], closed_u)));
+      const double t = s.u_end() * (a + 0.5) / kGapSamples;
+      const Point q = s.evaluate(t, mid);
+      double d = std::numeric_limits<double>::infinity();
+      for (std::size_t r : {j, j + 1}) {
+        const auto row = rows[r];
+        const std::span<const double> ur(u.data() + rows.offsets()[r], row.size());
+        const std::size_t near = nearest_parameter(ur, first[r - j], t);
+        d = std::min(d, distance_to_polyline(q, row, closed_u, near,
+                                             std::max<std::size_t>(8, row.size() / 32)));
+      }
+      m.row_gap = std::max(m.row_gap, d);
     }
   }
   return m;

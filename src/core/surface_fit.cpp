@@ -677,7 +677,7 @@ FitResult SurfaceFitter::finish(Attempt& at, int tightenings, const DeviationChe
     const BoundingBox box{box_.min - centre_, box_.max - centre_};
     Surface centred = out.surface;
     for (Point& p : centred.control) p -= centre_;
-    const ShapeMeasures m = measure_shape(centred, centred_, out.v, box, o_.closed_u);
+    const ShapeMeasures m = measure_shape(centred, centred_, out.u, out.v, box, o_.closed_u);
     r.fold = m.fold;
     r.box_excursion = m.box_excursion;
     r.row_gap = m.row_gap;
@@ -702,9 +702,9 @@ FitResult SurfaceFitter::fit(const Rows& rows) {
   // on the re-ordered rows; u, the worst point and the report refer to the original points.
   // update() refits in full after an aligned fit (valid_ cleared).
   if (o_.seam != SeamMode::kKeep || o_.orient != OrientMode::kKeep) {
-    validate(rows, o_);  // errors name the original rows and points
     const RowAlignment a = alignment_for(rows, o_);
     if (!a.identity()) {
+      validate(rows, o_);  // errors name the original rows and points
       row_seam_offsets_ = seam_offsets(a, o_.closed_u);
       FitResult r = fit_given(apply_alignment(rows, a));
       row_seam_offsets_.clear();
