@@ -32,7 +32,7 @@ struct FitArgs {
   std::string closed;
   std::string search = "fast";
   std::string parameters = "paper";
-  std::string seam = "align", orient = "auto";  // docs/seams.md
+  std::string seam = "align", orient = "auto", rerepresent = "paper";  // docs/seams.md
   int threads = 0;
   bool quiet = false;
   bool mesh = false;
@@ -98,6 +98,9 @@ int run_fit(const FitArgs& a) {
   if (!parse_seam_mode(a.seam, o.seam))
     throw Error(ErrorCode::kUsage, "'" + a.seam + "' is not one of align, keep",
                 Place{.option = "--seam"});
+  if (!parse_resampling(a.rerepresent, o.rerepresentation))
+    throw Error(ErrorCode::kUsage, "'" + a.rerepresent + "' is not one of paper, arc_length",
+                Place{.option = "--rerepresent"});
   if (!parse_orient_mode(a.orient, o.orient))
     throw Error(ErrorCode::kUsage, "'" + a.orient + "' is not one of auto, keep",
                 Place{.option = "--orient"});
@@ -254,6 +257,9 @@ void add_fit_command(CLI::App& app, Runner& run) {
                 "same direction) or keep (as given: the paper's scheme)");
   c->add_option("--orient", args->orient,
                 "auto (default: a row running against its neighbour is reversed) or keep");
+  c->add_option("--rerepresent", args->rerepresent,
+                "where the re-representation samples each row curve: paper (default) or "
+                "arc_length (equal arc length, open rows)");
   c->add_option("--threads", args->threads, "threads (0: all cores); results do not depend on it")
       ->check(CLI::Range(0, 4096));
   c->add_flag("--mesh", args->mesh, "write .obj as a tessellated mesh (not free-form)");

@@ -3,11 +3,19 @@
 #pragma once
 
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "sfit/curve_fit.h"
 
 namespace sfit {
+
+/// Where the old curve is sampled (docs/seams.md): the paper's parameters tau_l, or points at
+/// equal arc length along the curve (open curves; a closed one keeps the paper's samples), so
+/// that one row's concentration of points does not distort the surface.
+enum class Resampling { kPaper, kArcLength };
+std::string_view to_string(Resampling r);  ///< "paper", "arc_length"
+bool parse_resampling(std::string_view name, Resampling& out);
 
 struct Rerepresentation {
   Curve curve;                          ///< degree and count of the common knot vector
@@ -29,8 +37,12 @@ struct Rerepresentation {
 /// the samples' least-squares curve constrained to pass through them. `holds` says whether
 /// all points ended within `bound`; when it is false the caller must raise `count`.
 /// A pole (fit.curve.degree == 0) becomes `count` coincident control points.
+/// With Resampling::kArcLength (open curves) sample l is the point at arc length fraction
+/// tau_l / tau_last along the old curve, and each data point's new parameter is the image of
+/// its old one under the piecewise-linear map of those samples onto g_l.
 Rerepresentation rerepresent(const CurveFit& fit, std::span<const Point> data, int degree,
                              int count, bool periodic, const Point& bound,
-                             std::span<const double> target_parameters = {});
+                             std::span<const double> target_parameters = {},
+                             Resampling resampling = Resampling::kPaper);
 
 }  // namespace sfit

@@ -8,6 +8,7 @@
 
 #include "sfit/curve_fit.h"
 #include "sfit/parametrization.h"
+#include "sfit/rerepresent.h"
 #include "sfit/rows.h"
 #include "sfit/seam_alignment.h"
 #include "sfit/surface.h"
@@ -37,6 +38,9 @@ struct FitOptions {
   // Seams and orientation (docs/seams.md). Both keep: the rows are fitted exactly as given.
   SeamMode seam = SeamMode::kAlign;    ///< closed rows: start where the neighbour starts
   OrientMode orient = OrientMode::kAuto;  ///< rows running against their neighbour are reversed
+  /// Where the re-representation samples each row curve (docs/seams.md): the paper's
+  /// parameters, or equal arc length (open rows at the paper's parameters).
+  Resampling rerepresentation = Resampling::kPaper;
   /// Called between stages: (stage name, items done, items in the stage).
   std::function<void(std::string_view, std::size_t, std::size_t)> progress;
 };

@@ -317,7 +317,7 @@ void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of, GetPositi
 Rerepresentation represent_one(const CurveFit& fit, std::span<const Point> points,
                                std::span<const double> positions, int degree, int count,
                                bool periodic, const Point& bound, std::span<const double> target,
-                               bool weighted = false) {
+                               bool weighted = false, Resampling resampling = Resampling::kPaper) {
   // A weighted curve keeps its own fit's shape: re-represented, not refitted unweighted.
   if (!weighted && fit.scaled && !positions.empty() && fit.curve.degree == degree &&
       points.size() >= static_cast<std::size_t>(count) && fit.curve.count() != count) {
@@ -338,7 +338,7 @@ Rerepresentation represent_one(const CurveFit& fit, std::span<const Point> point
       return r;
     }
   }
-  return rerepresent(fit, points, degree, count, periodic, bound, target);
+  return rerepresent(fit, points, degree, count, periodic, bound, target, resampling);
 }
 
 // Re-represents every curve on one common count, starting at max(degree + 1, counts) and
@@ -357,7 +357,8 @@ Represented represent(std::size_t n_curves, GetPoints&& points_of, GetPositions&
                       const Point& bound, int threads, bool shared_params, std::size_t max_points,
                       std::span<const double> shared_positions,
                       std::vector<Rerepresentation>* reuse, int reuse_count,
-                      const std::vector<char>* dirty, bool weighted = false) {
+                      const std::vector<char>* dirty, bool weighted = false,
+                      Resampling resampling = Resampling::kPaper) {
   Represented st;
   int common = degree + 1;
   for (const auto& f : fits) common = std::max(common, f.curve.count());
@@ -386,7 +387,7 @@ Represented represent(std::size_t n_curves, GetPoints&& points_of, GetPositions&
             represent_one(fits[i], points_of(i), positions_of(i), degree, common, periodic, bound,
                           shared_params ? std::span<const double>(st.shared_parameters)
                                         : std::span<const double>(),
-                          weighted);
+                          weighted, resampling);
       }
       if (!st.curves[i].holds) failed.store(true, std::memory_order_relaxed);
     });
@@ -564,7 +565,8 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   // Re-representation on the common count nu (METHOD.md 4).
   Represented rs = represent(M, row_points, row_positions_of, fits, o_.degree_u, o_.closed_u, bound,
                              threads_, false, longest, {}, changed ? &row_curves_ : nullptr,
-                             row_common_, changed ? &dirty : nullptr, rows.weighted());
+                             row_common_, changed ? &dirty : nullptr, rows.weighted(),
+                             o_.rerepresentation);
   const int nu = rs.common;
 
   // Transverse stage: column i holds control point i of every row curve (METHOD.md 5).
