@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "sfit/deviation.h"
+#include "sfit/io/surface_json.h"
 #include "sfit/surface_fit.h"
 #include "shapes.h"
 #include "surface_distance.h"
@@ -179,6 +180,15 @@ TEST(RowOrientation, ReversedOpenRowsGiveTheSameSurface) {
   const long ow = original.report.worst_index;
   EXPECT_EQ(wr, original.report.worst_row);
   EXPECT_EQ(wi, wr % 2 ? static_cast<long>(rows[wr].size()) - 1 - ow : ow);
+  // The JSON report lists the reversed rows and the shape measures.
+  const auto j = io::report_to_json(f.report);
+  ASSERT_EQ(j.at("seams").size(), rows.size() / 2);
+  EXPECT_EQ(j.at("seams")[0][0], 1);
+  EXPECT_EQ(j.at("seams")[0][2], true);
+  EXPECT_EQ(j.at("fold"), f.report.fold);
+  EXPECT_EQ(j.at("box_excursion"), f.report.box_excursion);
+  EXPECT_GT(j.at("row_gap").get<double>(), 0.0);
+  EXPECT_EQ(j.at("parameters_across"), "paper");
   // --orient keep fits them as given: another (worse) surface.
   FitOptions keep = o;
   keep.orient = OrientMode::kKeep;

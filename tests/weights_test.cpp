@@ -9,6 +9,7 @@
 #include "sfit/basis.h"
 #include "sfit/curve_fit.h"
 #include "sfit/error.h"
+#include "sfit/incremental.h"
 #include "sfit/io/csv_reader.h"
 #include "sfit/io/rows_binary.h"
 #include "sfit/io/rows_reader.h"
@@ -186,6 +187,21 @@ TEST(Weights, WeightsOfBinaryRowsRoundTrip) {
     EXPECT_EQ(e.code(), ErrorCode::kInputData);
     EXPECT_EQ(e.place().row, 2);
     EXPECT_EQ(e.place().point, 1);
+  }
+}
+
+TEST(Weights, IncrementalEditsOfWeightedRowsAreRefused) {
+  Rows rows = test::load_rows(test::example("ship_px121_stations.rows"));
+  rows.set_weights(std::vector<double>(rows.total_points(), 2.0));
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, 1e-3);
+  IncrementalFit inc(rows, o);
+  EXPECT_TRUE(inc.result().report.within_tolerance);
+  try {
+    inc.move_point(2, 1, rows[2][1] + Point(0, 0.01, 0));
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kUsage);
   }
 }
 
