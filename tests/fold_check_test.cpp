@@ -109,7 +109,9 @@ void expect_no_fold(const Rows& rows, bool closed, Parametrization rule, double 
   const FitResult f = fit_surface(rows, o);
   EXPECT_TRUE(f.report.within_tolerance) << what;
   const double diagonal = bounding_box(rows).diagonal(), limit = kFoldRelative * diagonal;
-  EXPECT_NEAR(fold_measure(f.surface, f.v), f.report.fold, 1e-9 * diagonal) << what;
+  // The report samples within its budget, fold_measure() more densely: within 1 %.
+  const double dense = fold_measure(f.surface, f.v);
+  EXPECT_NEAR(dense, f.report.fold, 0.01 * dense + 1e-9 * diagonal) << what;
   if (known_fold) {
     // Known limitation (docs/seams.md): no rule across the rows avoids the fold here; the
     // report says so. It stays below 1e-3 of the diagonal.

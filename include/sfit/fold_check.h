@@ -32,7 +32,8 @@ struct ShapeMeasures {
   double row_gap = 0;
 };
 
-/// The fold, the box excursion (on the fold's samples) and the gap between rows.
+/// The fold, the box excursion (on the fold's samples) and the gap between rows. The fold's
+/// samples here stay within a quarter of the data's points (at least 2e4, at most 1e5).
 /// `u` and `v` are the points' and rows' parameters (FitResult::u, ::v).
 ShapeMeasures measure_shape(const Surface& s, const Rows& rows, std::span<const double> u,
                             std::span<const double> v, const BoundingBox& box, bool closed_u);
