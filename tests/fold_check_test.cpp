@@ -156,6 +156,12 @@ TEST_P(FuselageNoFold, WithEveryRule) {
     o.tolerance = relative_tolerance(test::fuselage_like(), fraction);
     EXPECT_EQ(fit_surface(test::fuselage_like(), o).report.parametrization_across,
               Parametrization::kChord);
+    // Without the guard the paper's fit stays, folded, and says so.
+    o.fold_guard = false;
+    const FitResult folded = fit_surface(test::fuselage_like(), o);
+    EXPECT_EQ(folded.report.parametrization_across, Parametrization::kPaper);
+    EXPECT_GT(folded.report.fold, kFoldRelative * bounding_box(test::fuselage_like()).diagonal());
+    EXPECT_GT(runs_back(folded.surface, folded.v), 0.0);
   }
 }
 INSTANTIATE_TEST_SUITE_P(Rules, FuselageNoFold,

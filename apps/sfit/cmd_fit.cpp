@@ -35,6 +35,7 @@ struct FitArgs {
   std::string seam = "align", orient = "auto", rerepresent = "paper";  // docs/seams.md
   int threads = 0;
   bool quiet = false;
+  bool no_fold_guard = false;  // docs/seams.md
   bool mesh = false;
   int mesh_density = 0;
   bool fields = false;
@@ -95,6 +96,7 @@ int run_fit(const FitArgs& a) {
   o.search = a.search == "linear" ? CountSearch::kLinear : CountSearch::kFast;
   parse_parametrization(a.parameters, o.parametrization);  // checked by CLI11
   o.threads = a.threads;
+  o.fold_guard = !a.no_fold_guard;
   if (!parse_seam_mode(a.seam, o.seam))
     throw Error(ErrorCode::kUsage, "'" + a.seam + "' is not one of align, keep",
                 Place{.option = "--seam"});
@@ -195,9 +197,10 @@ int run_fit(const FitArgs& a) {
     say(fmt::format("shape: fold {}, out of the data's box by {}, farthest from the rows {}",
                     g(r.fold), g(r.box_excursion), g(r.row_gap)));
     if (r.fold > kFoldRelative * box.diagonal())
-      say(fmt::format("warning: the surface folds back on itself by {} between rows (no rule "
-                      "across the rows avoided it); meshes and offsets of it will fail",
-                      g(r.fold)));
+      say(fmt::format("warning: the surface folds back on itself by {} between rows ({}); "
+                      "meshes and offsets of it will fail",
+                      g(r.fold),
+                      o.fold_guard ? "no rule across the rows avoided it" : "--no-fold-guard"));
   }
   if (!r.within_tolerance)
     throw Error(
@@ -257,6 +260,9 @@ void add_fit_command(CLI::App& app, Runner& run) {
                 "same direction) or keep (as given: the paper's scheme)");
   c->add_option("--orient", args->orient,
                 "auto (default: a row running against its neighbour is reversed) or keep");
+  c->add_flag("--no-fold-guard", args->no_fold_guard,
+              "keep a surface that folds between rows (with --seam keep --orient keep: the "
+              "paper's scheme exactly)");
   c->add_option("--rerepresent", args->rerepresent,
                 "where the re-representation samples each row curve: paper (default) or "
                 "arc_length (equal arc length, open rows)");

@@ -41,6 +41,9 @@ struct FitOptions {
   /// Where the re-representation samples each row curve (docs/seams.md): the paper's
   /// parameters, or equal arc length (open rows at the paper's parameters).
   Resampling rerepresentation = Resampling::kPaper;
+  /// A surface that folds between rows (fold_check.h) is refitted with another rule across
+  /// the rows. false, with seam and orient kKeep: the paper's scheme exactly.
+  bool fold_guard = true;
   /// Called between stages: (stage name, items done, items in the stage).
   std::function<void(std::string_view, std::size_t, std::size_t)> progress;
 };

@@ -751,7 +751,7 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
   // report.fold says by how much (the CLI warns).
   const double t0 = now();
   FitResult r = fit_rule_unguarded(rows, requested);
-  if (!folds(r)) return r;
+  if (!o_.fold_guard || !folds(r)) return r;
   const Parametrization used = rule_;
   std::optional<FitResult> best;
   for (Parametrization across : {Parametrization::kChord, Parametrization::kCentripetal}) {
@@ -793,7 +793,8 @@ FitResult SurfaceFitter::fit_rule_unguarded(const Rows& rows, Parametrization re
   const double t0 = now();
   try {
     FitResult r = fit_with_rule(rows);
-    if (r.report.within_tolerance && stays_near_the_data(r.surface, box_) && !folds(r)) {
+    if (r.report.within_tolerance && stays_near_the_data(r.surface, box_) &&
+        !(o_.fold_guard && folds(r))) {
       r.report.seconds = now() - t0;
       return r;
     }
@@ -865,7 +866,7 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   FitResult out = finish(at, 0, check, t0);
   if (rule_ != Parametrization::kPaper && !stays_near_the_data(out.surface, box_))
     return fit(rows);  // fit() falls back to the paper's rule: do exactly that
-  if (folds(out)) return fit(rows);  // [seams hook] fit() guards against the fold
+  if (o_.fold_guard && folds(out)) return fit(rows);  // [seams hook] fit() guards the fold
   valid_ = true;
   return out;
 }
