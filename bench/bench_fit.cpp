@@ -34,6 +34,27 @@ BENCHMARK(BM_FitGrid)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// The same grids with a weight on every point (docs/seams.md): weighted least squares
+// factorises every curve afresh (no shared factorisations), the price of weights.
+void BM_FitGridWeighted(benchmark::State& state) {
+  Rows rows = square_grid(state.range(0));
+  std::vector<double> w(rows.total_points());
+  for (std::size_t k = 0; k < w.size(); ++k) w[k] = 1 + 0.5 * static_cast<double>(k % 3);
+  rows.set_weights(std::move(w));
+  const FitOptions o = options_for(rows, 1e-3, 1);
+  FitResult r;
+  for (auto _ : state) r = fit_surface(rows, o);
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(rows.total_points()));
+  state.counters["nu"] = r.surface.count_u;
+  state.counters["nv"] = r.surface.count_v;
+  state.counters["held"] = r.report.within_tolerance;
+}
+BENCHMARK(BM_FitGridWeighted)
+    ->ArgsProduct({{10000, 100000}})
+    ->ArgNames({"points"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 void BM_FitRagged(benchmark::State& state) {
   const int n = static_cast<int>(std::sqrt(static_cast<double>(state.range(0))));
   const Rows rows = ragged(n, n);

@@ -52,8 +52,8 @@ TEST(RowsReader, ErrorsNameLineAndColumn) {
   EXPECT_EQ(p.column, 3);
   EXPECT_EQ(code_of("1 2 3\n4 5\n", &p), ErrorCode::kInputSyntax);
   EXPECT_EQ(p.line, 2);
-  EXPECT_EQ(code_of("1 2 3 4\n", &p), ErrorCode::kInputSyntax);
-  EXPECT_EQ(p.column, 7);
+  EXPECT_EQ(code_of("1 2 3 4 5\n", &p), ErrorCode::kInputSyntax);  // a 4th is a weight
+  EXPECT_EQ(p.column, 9);
   EXPECT_EQ(code_of("1 nan 3\n", &p), ErrorCode::kInputData);
   EXPECT_EQ(p.column, 3);
   EXPECT_EQ(code_of("1 2 inf\n"), ErrorCode::kInputData);

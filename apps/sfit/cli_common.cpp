@@ -97,6 +97,17 @@ void add_fit_option_flags(CLI::App* c, FitOptionArgs& a) {
   c->add_option("--norm", a.norm,
                 "with --method surface: l2 (least squares), linf (minimax), auto (default: "
                 "least squares, minimax where it misses T by a little)");
+  c->add_option("--seam", a.seam,
+                "closed rows: align (default: each row starts where its neighbour starts, "
+                "same direction) or keep (as given: the paper's scheme)");
+  c->add_option("--orient", a.orient,
+                "auto (default: a row running against its neighbour is reversed) or keep");
+  c->add_flag("--no-fold-guard", a.no_fold_guard,
+              "keep a surface that folds between rows (with --seam keep --orient keep: the "
+              "paper's scheme exactly)");
+  c->add_option("--rerepresent", a.rerepresent,
+                "where --method sfit01's re-representation samples each row curve: paper "
+                "(default) or arc_length (equal arc length, open rows)");
   c->add_option("--threads", a.threads,
                 "threads, 0 (all cores) ... " + std::to_string(kMaxThreads) +
                     "; results do not depend on it");
@@ -127,6 +138,16 @@ CheckedFitOptions check_fit_options(const FitOptionArgs& a) {
   if (!parse_fit_norm(a.norm, o.norm))
     throw Error(ErrorCode::kUsage, "'" + a.norm + "' is not a norm (l2, linf, auto)",
                 Place{.option = "--norm"});
+  o.fold_guard = !a.no_fold_guard;
+  if (!parse_seam_mode(a.seam, o.seam))
+    throw Error(ErrorCode::kUsage, "'" + a.seam + "' is not one of align, keep",
+                Place{.option = "--seam"});
+  if (!parse_resampling(a.rerepresent, o.rerepresentation))
+    throw Error(ErrorCode::kUsage, "'" + a.rerepresent + "' is not one of paper, arc_length",
+                Place{.option = "--rerepresent"});
+  if (!parse_orient_mode(a.orient, o.orient))
+    throw Error(ErrorCode::kUsage, "'" + a.orient + "' is not one of auto, keep",
+                Place{.option = "--orient"});
   check_threads(a.threads, "--threads");
   o.threads = a.threads;
   if (a.tol && a.tol_rel)

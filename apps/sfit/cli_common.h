@@ -25,10 +25,13 @@ struct FitOptionArgs {
   std::string search = "fast";
   std::string parameters = "auto";
   std::string method = "surface", norm = "auto";
+  std::string seam = "align", orient = "auto", rerepresent = "paper";  // docs/seams.md
+  bool no_fold_guard = false;                                          // docs/seams.md
   int threads = 0;
 };
 /// Adds --degree, --degree-u, --degree-v, --tol, --tol-rel, --closed, --search, --parameters,
-/// --method, --norm and --threads to `c`, bound to `a` (fit and edit share them).
+/// --method, --norm, --seam, --orient, --no-fold-guard, --rerepresent and --threads to `c`, bound
+/// to `a` (fit and edit share them).
 void add_fit_option_flags(CLI::App* c, FitOptionArgs& a);
 /// Checked options: `options` has everything but the tolerance, which comes from the data
 /// unless it was given absolutely (tolerance()).

@@ -12,6 +12,7 @@
 #include "outputs.h"
 #include "sfit/error.h"
 #include "sfit/fit_limits.h"
+#include "sfit/fold_check.h"
 #include "sfit/io/atomic_file.h"
 #include "sfit/io/formats.h"
 #include "sfit/io/surface_json.h"
@@ -30,6 +31,7 @@ struct FitArgs : FitOptionArgs {  // --degree, --tol, --closed, ... (cli_common.
   std::vector<std::string> outputs;
   std::string report;
   bool quiet = false;
+  bool no_fold_guard = false;  // docs/seams.md
   bool mesh = false;
   int mesh_density = 0;
   bool fields = false;
@@ -136,6 +138,50 @@ int run_fit(const FitArgs& a) {
                   vec(r.worst_deviation)));
   say(fmt::format("every point within tolerance: {}; {:.3f} s", r.within_tolerance ? "yes" : "NO",
                   r.seconds));
+  {  // Seams and shape measures (docs/seams.md).
+    int moved = 0, reversed = 0;
+    for (const RowSeam& s : r.seams) {
+      moved += s.shift != 0 || s.offset != 0;
+      reversed += s.reversed;
+    }
+    if (moved || reversed)
+      say(
+          fmt::format("seams: {} rows start elsewhere, {} rows reversed (--seam/--orient keep: as "
+                      "given)",
+                      moved, reversed));
+    if (r.parametrization_across != r.parametrization && r.method == FitMethod::kSfit01)
+      say(fmt::format("{} parameters across the rows: the surface folded with {}",
+                      to_string(r.parametrization_across), to_string(r.parametrization)));
+    say(fmt::format("shape: fold {}, out of the data's box by {}, farthest from the rows {}",
+                    g(r.fold), g(r.box_excursion), g(r.row_gap)));
+    if (r.fold > kFoldRelative * box.diagonal())
+      say(fmt::format(
+          "warning: the surface folds back on itself by {} between rows ({}); "
+          "meshes and offsets of it will fail",
+          g(r.fold), o.fold_guard ? "no rule across the rows avoided it" : "--no-fold-guard"));
+  }
+  {  // Seams and shape measures (docs/seams.md).
+    int moved = 0, reversed = 0;
+    for (const RowSeam& s : r.seams) {
+      moved += s.shift != 0 || s.offset != 0;
+      reversed += s.reversed;
+    }
+    if (moved || reversed)
+      say(
+          fmt::format("seams: {} rows start elsewhere, {} rows reversed (--seam/--orient keep: as "
+                      "given)",
+                      moved, reversed));
+    if (r.parametrization_across != r.parametrization)
+      say(fmt::format("{} parameters across the rows: the surface folded with {}",
+                      to_string(r.parametrization_across), to_string(r.parametrization)));
+    say(fmt::format("shape: fold {}, out of the data's box by {}, farthest from the rows {}",
+                    g(r.fold), g(r.box_excursion), g(r.row_gap)));
+    if (r.fold > kFoldRelative * box.diagonal())
+      say(fmt::format(
+          "warning: the surface folds back on itself by {} between rows ({}); "
+          "meshes and offsets of it will fail",
+          g(r.fold), o.fold_guard ? "no rule across the rows avoided it" : "--no-fold-guard"));
+  }
   if (!r.within_tolerance)
     throw Error(
         ErrorCode::kToleranceNotMet,

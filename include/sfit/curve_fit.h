@@ -2,6 +2,8 @@
 // keeps every component of every point within a bound (docs/method.md section 3).
 #pragma once
 
+#include <string_view>
+
 #include <span>
 #include <vector>
 
@@ -9,6 +11,12 @@
 #include "sfit/rows.h"
 
 namespace sfit {
+
+/// How a row curve is re-represented on the common count (docs/seams.md): sampled at the
+/// paper's parameters, or at equal arc length (open curves; a closed one keeps the paper's).
+enum class Resampling { kPaper, kArcLength };
+std::string_view to_string(Resampling r);  ///< "paper", "arc_length"
+bool parse_resampling(std::string_view name, Resampling& out);
 
 /// How the smallest control-point count is searched (docs/method.md section 7.1).
 enum class CountSearch {
@@ -39,8 +47,11 @@ struct CurveFit {
 /// (normalized_positions()), at their scaled_parameters(). Requires degree+1 <= count <=
 /// points.size() (a periodic fit needs count >= degree + 1 too). Throws Error(kInternal) if
 /// the system is singular, which the paper's parameters rule out (positions may not).
+/// With `weights` (one > 0 per point; empty: all 1) the fit minimises sum w_j |C(t_j) - D_j|^2
+/// (weighted least squares: each equation scaled by sqrt(w_j)).
 CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count,
-                              std::span<const double> positions = {});
+                              std::span<const double> positions = {},
+                              std::span<const double> weights = {});
 
 struct CurveFitOptions {
   int degree = 3;
@@ -55,6 +66,9 @@ struct CurveFitOptions {
   /// The positions are shared by many curves (all columns, rows of one length at uniform
   /// positions): worth caching their factorisations.
   bool shared_positions = false;
+  /// Weights of the points (docs/seams.md): weighted least squares; empty: all 1, and the
+  /// shared factorisations are used. The bound stays a hard bound for every point.
+  std::span<const double> weights;
 };
 
 /// The curve with the smallest count in [degree+1, N] whose fit keeps every point within

@@ -50,9 +50,23 @@ class Rows {
     offsets_.reserve(rows + 1);
   }
 
+  /// Per-point weights (docs/seams.md), in the order of points(); empty: every weight 1 (and
+  /// nothing stored). fit_surface() requires one finite weight > 0 per point.
+  const std::vector<double>& weights() const { return weights_; }
+  bool weighted() const { return !weights_.empty(); }
+  void set_weights(std::vector<double> w) { weights_ = std::move(w); }
+  /// Appends one weight (readers: in step with push_point()).
+  void push_weight(double w) { weights_.push_back(w); }
+  /// Row j's weights (empty when unweighted).
+  std::span<const double> row_weights(std::size_t j) const {
+    if (weights_.empty()) return {};
+    return {weights_.data() + offsets_[j], offsets_[j + 1] - offsets_[j]};
+  }
+
  private:
   std::vector<Point> points_;
   std::vector<std::size_t> offsets_;
+  std::vector<double> weights_;
 };
 
 /// Axis-aligned bounding box of all points.

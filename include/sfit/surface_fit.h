@@ -13,6 +13,7 @@
 #include "sfit/fit_limits.h"
 #include "sfit/parametrization.h"
 #include "sfit/rows.h"
+#include "sfit/seam_alignment.h"
 #include "sfit/surface.h"
 
 namespace sfit {
@@ -66,6 +67,15 @@ struct FitOptions {
   /// kSurface only: fit at exactly these counts (nu, nv), no search; the report says whether
   /// the surface holds T (a fast refit, e.g. while an editor drags a point).
   std::optional<std::array<int, 2>> counts;
+  // Seams and orientation (docs/seams.md). Both keep: the rows are fitted exactly as given.
+  SeamMode seam = SeamMode::kAlign;       ///< closed rows: start where the neighbour starts
+  OrientMode orient = OrientMode::kAuto;  ///< rows running against their neighbour are reversed
+  /// Where the re-representation samples each row curve (docs/seams.md): the paper's
+  /// parameters, or equal arc length (open rows at the paper's parameters).
+  Resampling rerepresentation = Resampling::kPaper;
+  /// A surface that folds between rows (fold_check.h) is refitted with another rule across
+  /// the rows. false, with seam and orient kKeep: the paper's scheme exactly.
+  bool fold_guard = true;
   /// Called between stages: (stage name, items done, items in the stage).
   std::function<void(std::string_view, std::size_t, std::size_t)> progress;
 };
@@ -103,6 +113,13 @@ struct FitReport {
   /// Why the surface search stopped where it did (empty for kSfit01), e.g. "minimal": at the
   /// chosen pair one fewer in either direction fails; "sfit01": nothing smaller held.
   std::string stop_reason;
+  // Seams and shape measures (docs/seams.md).
+  std::vector<RowSeam> seams;  ///< each row's start and direction as fitted; empty: as given
+  /// The rule across the rows: `parametrization`, or the one the fold guard chose.
+  Parametrization parametrization_across = Parametrization::kPaper;
+  double box_excursion = 0;  ///< largest distance of the sampled surface outside the data's box
+  double fold = 0;           ///< how far the surface doubles back between rows (fold_check.h)
+  double row_gap = 0;        ///< largest distance, sampled between rows, to the nearer data row
 };
 
 struct FitResult {
@@ -126,9 +143,10 @@ Point relative_tolerance(const Rows& rows, double fraction);
 /// (checked on the finished surface, as below, and guarded against swings between points);
 /// the smallest wins, the kSfit01 surface where nothing smaller holds.
 ///
-/// kSfit01, the paper's method: curve stage on each row (minimal count within T/2), re-representation on
-/// the common count nu, transverse stage on the nu columns of control points (minimal count
-/// within T/2), re-representation on nv, assembly, and the check of every data point.
+/// kSfit01, the paper's method: curve stage on each row (minimal count within T/2),
+/// re-representation on the common count nu, transverse stage on the nu columns of control points
+/// (minimal count within T/2), re-representation on nv, assembly, and the check of every data
+/// point.
 ///
 /// The guarantee: each re-representation is checked point by point and repaired
 /// (rerepresent()); where that cannot hold a row (column), nu (nv) is raised. Columns are

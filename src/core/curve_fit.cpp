@@ -9,8 +9,8 @@
 
 #include "banded_lsq.h"
 #include "basis.h"
-#include "sfit/error.h"
 #include "parameters.h"
+#include "sfit/error.h"
 #include "thread_cache.h"
 
 namespace sfit {
@@ -41,7 +41,7 @@ struct Collocation {
 
   /// With `data`, factorises with it as right-hand side and records nothing (one use).
   Collocation(int p, int c, bool per, int n, std::span<const double> pos,
-              const Point* data = nullptr)
+              const Point* data = nullptr, const double* weights = nullptr)
       : degree(p),
         count(c),
         n_points(n),
@@ -57,7 +57,8 @@ struct Collocation {
     for (int j = 0; j < n; ++j) {
       double* b = &basis[static_cast<std::size_t>(j) * w];
       first[j] = eval_basis(p, c, per, t[j], b);
-      lsq.add(first[j], b, data ? data[j] : zero);
+      // Weighted least squares: equation j scaled by sqrt(w_j) (never on the shared path).
+      lsq.add(first[j], b, data ? data[j] : zero, weights ? std::sqrt(weights[j]) : 1.0);
     }
     std::vector<Point> x;
     singular = !lsq.solve(x) || (!pos.empty() && lsq.pivot_ratio() < kMinPivotRatio);
@@ -118,7 +119,7 @@ enum class Solve { kFails, kHolds, kSingular };
 Solve solve_count(std::span<const Point> points, int degree, bool periodic, int count,
                   std::span<const double> positions, bool cache_it, const Point* bound,
                   Workspace& ws, Point& max_dev, const Collocation*& used,
-                  std::unique_ptr<Collocation>& uncached) {
+                  std::unique_ptr<Collocation>& uncached, std::span<const double> weights = {}) {
   const int n_points = static_cast<int>(points.size());
   const int w = degree + 1;
   auto singular = [&]() {
@@ -128,7 +129,7 @@ Solve solve_count(std::span<const Point> points, int degree, bool periodic, int 
         {static_cast<double>(degree), static_cast<double>(count), static_cast<double>(n_points)});
   };
   const Collocation* C = nullptr;
-  if (cache_it && static_cast<std::size_t>(n_points) <= kLongestCached)
+  if (cache_it && weights.empty() && static_cast<std::size_t>(n_points) <= kLongestCached)
     C = collocation(degree, count, periodic, n_points, positions);
   if (C) {
     used = C;
@@ -137,7 +138,8 @@ Solve solve_count(std::span<const Point> points, int degree, bool periodic, int 
     // Too long to cache, or positions of this curve alone: factorise with the data directly
     // (no rotation log; the same bits as a replay).
     uncached =
-        std::make_unique<Collocation>(degree, count, periodic, n_points, positions, points.data());
+        std::make_unique<Collocation>(degree, count, periodic, n_points, positions, points.data(),
+                                      weights.empty() ? nullptr : weights.data());
     used = uncached.get();
     if (uncached->singular || !uncached->lsq.solve(ws.control)) return singular();
   }
@@ -179,12 +181,12 @@ CurveFit from_workspace(const Workspace& ws, const Collocation& C, const Point& 
 }  // namespace
 
 CurveFit fit_curve_with_count(std::span<const Point> points, int degree, bool periodic, int count,
-                              std::span<const double> positions) {
+                              std::span<const double> positions, std::span<const double> weights) {
   Point dev;
   const Collocation* used = nullptr;
   std::unique_ptr<Collocation> uncached;
   if (solve_count(points, degree, periodic, count, positions, positions.empty(), nullptr, tls, dev,
-                  used, uncached) == Solve::kSingular)
+                  used, uncached, weights) == Solve::kSingular)
     throw Error(ErrorCode::kInternal, "singular least-squares system in the curve stage", Place{},
                 {static_cast<double>(degree), static_cast<double>(count),
                  static_cast<double>(points.size())});
@@ -225,7 +227,7 @@ CurveFit fit_curve(std::span<const Point> points, const CurveFitOptions& o) {
     const bool last_resort = count == n;
     Solve r = solve_count(points, o.degree, o.periodic, count, o.positions, cache_it,
                           last_resort && o.positions.empty() ? nullptr : &o.bound, ws, dev, used,
-                          uncached);
+                          uncached, o.weights);
     if (last_resort && r != Solve::kHolds && !o.positions.empty()) {
       ++solves;
       r = solve_count(points, o.degree, o.periodic, count, {}, true, nullptr, ws, dev, used,

@@ -116,6 +116,21 @@ void validate(const Rows& rows, const FitOptions& o) {
                     Place{.row = jl, .point = static_cast<long>(k)},
                     {row[k].x(), row[k].y(), row[k].z()});
   }
+  // [seams] Weights (docs/seams.md): one finite weight > 0 per point, or none.
+  if (rows.weighted()) {
+    if (rows.weights().size() != rows.total_points())
+      throw Error(ErrorCode::kInputData,
+                  "weights: " + std::to_string(rows.weights().size()) + " weights for " +
+                      std::to_string(rows.total_points()) + " points",
+                  Place{}, {static_cast<double>(rows.weights().size())});
+    for (std::size_t j = 0; j < M; ++j) {
+      const auto w = rows.row_weights(j);
+      for (std::size_t k = 0; k < w.size(); ++k)
+        if (!(w[k] > 0) || !std::isfinite(w[k]))
+          throw Error(ErrorCode::kInputData, "weight must be a finite number > 0",
+                      Place{.row = static_cast<long>(j), .point = static_cast<long>(k)}, {w[k]});
+    }
+  }
   // The data must span a surface: not one point, not one straight line; and its size must
   // leave room for squares in double precision (1e-150 ... 1e150; an offset costs nothing).
   const BoundingBox box = detail::box_of(rows, threads);

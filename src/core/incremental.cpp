@@ -40,6 +40,10 @@ std::size_t IncrementalFit::rows_refitted() const {
 }
 
 const FitResult& IncrementalFit::apply(Rows edited, std::size_t row) {
+  // [seams] Edits do not carry per-point weights yet: refuse rather than drop them.
+  if (rows_.weighted())
+    throw Error(ErrorCode::kUsage, "edits of weighted rows are not supported yet",
+                Place{.option = "weights"});
   FitResult r = fitter_->update(edited, {row});  // throws before touching the state
   rows_ = std::move(edited);
   result_ = std::move(r);

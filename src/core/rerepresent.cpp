@@ -27,14 +27,26 @@ struct Geometry {
   bool singular = false;
 
   Geometry(const CurveFit& fit, std::size_t n_data, int degree, int count, bool periodic,
-           std::span<const double> target)
+           std::span<const double> target, const std::vector<double>* samples = nullptr)
       : old_t(fit.parameters), interp(count, degree + 1, periodic) {
     const Curve& old = fit.curve;
     const int w = degree + 1, wo = old.degree + 1;
     const ReparameterMap map(old.degree, old.count(), degree, count, periodic, fit.scaled);
+    // [seams] Arc-length samples (open curves): the data map piecewise linearly from them.
+    const std::vector<double>& tau = samples ? *samples : map.samples();
+    const auto& g = map.targets();
+    auto image = [&](double t) {
+      if (!samples) return map(t);
+      if (t <= tau.front()) return g.front();
+      if (t >= tau.back()) return g.back();
+      const std::size_t l =
+          static_cast<std::size_t>(std::upper_bound(tau.begin(), tau.end(), t) - tau.begin()) - 1;
+      const double d = tau[l + 1] - tau[l];
+      return g[l] + (d > 0 ? (t - tau[l]) / d : 0.0) * (g[l + 1] - g[l]);
+    };
     if (target.empty()) {
       params.resize(n_data);
-      for (std::size_t k = 0; k < n_data; ++k) params[k] = map(fit.parameters[k]);
+      for (std::size_t k = 0; k < n_data; ++k) params[k] = image(fit.parameters[k]);
     } else {
       params.assign(target.begin(), target.end());
     }
@@ -42,8 +54,6 @@ struct Geometry {
     dfirst.resize(n_data);
     for (std::size_t k = 0; k < n_data; ++k)
       dfirst[k] = eval_basis(degree, count, periodic, params[k], &db[k * w]);
-    const auto& tau = map.samples();
-    const auto& g = map.targets();
     sb.resize(static_cast<std::size_t>(count) * wo);
     sfirst.resize(static_cast<std::size_t>(count));
     gb.resize(static_cast<std::size_t>(count) * w);
@@ -88,11 +98,53 @@ const Geometry& geometry(const CurveFit& fit, std::size_t n_data, int degree, in
   return *uncached;
 }
 
+// The paper's sample parameters moved to equal arc length: sample l at the point whose arc
+// length from the start is tau_l / tau_last of the whole (dense chords, 32 per old span).
+std::vector<double> arc_length_samples(const Curve& old, const std::vector<double>& tau) {
+  const double end = old.domain_end();
+  const int n = 32 * std::max(1, old.count() - old.degree);
+  std::vector<double> t(n + 1), s(n + 1, 0.0);
+  Point prev = old.evaluate(0);
+  for (int i = 0; i <= n; ++i) {
+    t[i] = end * i / n;
+    const Point p = old.evaluate(t[i]);
+    if (i > 0) s[i] = s[i - 1] + (p - prev).norm();
+    prev = p;
+  }
+  std::vector<double> out(tau.size());
+  if (!(s[n] > 0) || tau.size() < 2) return tau;
+  for (std::size_t l = 0; l < tau.size(); ++l) {
+    const double want = s[n] * (tau[l] - tau.front()) / (tau.back() - tau.front());
+    const std::size_t i = std::min<std::size_t>(
+        n - 1, static_cast<std::size_t>(std::upper_bound(s.begin(), s.end(), want) - s.begin()) -
+                   (want > 0 ? 1 : 0));
+    const double d = s[i + 1] - s[i];
+    out[l] = t[i] + (d > 0 ? (want - s[i]) / d : 0.0) * (t[i + 1] - t[i]);
+  }
+  out.front() = tau.front();
+  out.back() = tau.back();
+  return out;
+}
+
 }  // namespace
+
+std::string_view to_string(Resampling r) {
+  return r == Resampling::kArcLength ? "arc_length" : "paper";
+}
+bool parse_resampling(std::string_view name, Resampling& out) {
+  if (name == "paper") {
+    out = Resampling::kPaper;
+  } else if (name == "arc_length") {
+    out = Resampling::kArcLength;
+  } else {
+    return false;
+  }
+  return true;
+}
 
 Rerepresentation rerepresent(const CurveFit& fit, std::span<const Point> data, int degree,
                              int count, bool periodic, const Point& bound,
-                             std::span<const double> target_parameters) {
+                             std::span<const double> target_parameters, Resampling resampling) {
   Rerepresentation out;
   out.curve.degree = degree;
   out.curve.periodic = periodic;
@@ -123,7 +175,17 @@ Rerepresentation rerepresent(const CurveFit& fit, std::span<const Point> data, i
   }
 
   std::unique_ptr<Geometry> uncached;
-  const Geometry& G = geometry(fit, n_data, degree, count, periodic, target_parameters, uncached);
+  std::vector<double> arc;
+  const bool by_arc = resampling == Resampling::kArcLength && !periodic && !fit.scaled;
+  if (by_arc) {
+    const ReparameterMap map(old.degree, old.count(), degree, count, periodic, fit.scaled);
+    arc = arc_length_samples(old, map.samples());
+    uncached =
+        std::make_unique<Geometry>(fit, n_data, degree, count, periodic, target_parameters, &arc);
+  }
+  const Geometry& G =
+      by_arc ? *uncached
+             : geometry(fit, n_data, degree, count, periodic, target_parameters, uncached);
   out.parameters = G.params;
   const int w = degree + 1;
   const auto& gb = G.gb;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "sfit/curve_fit.h"
@@ -29,8 +30,12 @@ struct Rerepresentation {
 /// the samples' least-squares curve constrained to pass through them. `holds` says whether
 /// all points ended within `bound`; when it is false the caller must raise `count`.
 /// A pole (fit.curve.degree == 0) becomes `count` coincident control points.
+/// With Resampling::kArcLength (open curves) sample l is the point at arc length fraction
+/// tau_l / tau_last along the old curve, and each data point's new parameter is the image of
+/// its old one under the piecewise-linear map of those samples onto g_l.
 Rerepresentation rerepresent(const CurveFit& fit, std::span<const Point> data, int degree,
                              int count, bool periodic, const Point& bound,
-                             std::span<const double> target_parameters = {});
+                             std::span<const double> target_parameters = {},
+                             Resampling resampling = Resampling::kPaper);
 
 }  // namespace sfit

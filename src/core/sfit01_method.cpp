@@ -2,10 +2,13 @@
 // re-representation on a common count, transverse stage on the columns of control points.
 // Unchanged in its results by the split into frame and methods (the tests compare bits).
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <functional>
 #include <optional>
 #include <string>
 
+#include "aligned_fit.h"
 #include "basis.h"
 #include "deviation.h"
 #include "fit_frame.h"
@@ -13,6 +16,7 @@
 #include "parameters.h"
 #include "rerepresent.h"
 #include "sfit/error.h"
+#include "sfit/fold_check.h"
 #include "surface_fitter.h"
 
 namespace sfit::detail {
@@ -20,6 +24,8 @@ namespace sfit::detail {
 namespace {
 
 constexpr std::size_t kBlock = 16;  // curves whose searches chain their starting counts
+// [seams] Weights of curve i's points (docs/seams.md); empty function: unweighted.
+using WeightsOf = std::function<std::span<const double>(std::size_t)>;
 
 // The minimal fits of curves `todo` (sorted), each starting from its block predecessor's
 // count (or from `hints`). Fixed blocks make the result independent of the thread count.
@@ -29,7 +35,8 @@ constexpr std::size_t kBlock = 16;  // curves whose searches chain their startin
 template <class GetPoints, class GetPositions>
 std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, GetPositions&& positions_of,
                        const CurveFitOptions& base, const std::vector<int>& hints, int threads,
-                       std::vector<CurveFit>& fits, const std::vector<char>* todo) {
+                       std::vector<CurveFit>& fits, const std::vector<char>* todo,
+                       const WeightsOf& weights_of = {}) {
   const bool have_hints = hints.size() == n_curves;
   const std::size_t n_blocks = (n_curves + kBlock - 1) / kBlock;
   fits.resize(n_curves);
@@ -48,6 +55,7 @@ std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, GetPositions
         CurveFitOptions co = base;
         co.hint = have_hints ? hints[i] : previous;
         co.positions = positions_of(i);
+        if (weights_of) co.weights = weights_of(i);  // [seams] weighted least squares
         fits[i] = fit_curve(points_of(i), co);
         ++fitted[b];
       }
@@ -71,7 +79,7 @@ std::size_t fit_curves(std::size_t n_curves, GetPoints&& points_of, GetPositions
 // single row of 10^6 points needing 1000 control points is not searched one count at a time.
 template <class GetPoints, class GetPositions>
 void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of, GetPositions&& positions_of,
-                   const CurveFitOptions& base, int threads) {
+                   const CurveFitOptions& base, int threads, const WeightsOf& weights_of = {}) {
   if (base.search != CountSearch::kFast) return;
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < fits.size(); ++i)
@@ -111,6 +119,7 @@ void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of, GetPositi
     parallel_for(next.size(), threads, [&](std::size_t c) {
       CurveFitOptions o = linear;
       o.positions = positions_of(next[c]);
+      if (weights_of) o.weights = weights_of(next[c]);
       linear_fits[c] = fit_curve(points_of(next[c]), o);
     });
     for (std::size_t c = 0; c < next.size(); ++c) {
@@ -135,8 +144,10 @@ void exact_maximum(std::vector<CurveFit>& fits, GetPoints&& points_of, GetPositi
 // (the count's fit is not always within the bound when a smaller one is), rerepresent().
 Rerepresentation represent_one(const CurveFit& fit, std::span<const Point> points,
                                std::span<const double> positions, int degree, int count,
-                               bool periodic, const Point& bound, std::span<const double> target) {
-  if (fit.scaled && !positions.empty() && fit.curve.degree == degree &&
+                               bool periodic, const Point& bound, std::span<const double> target,
+                               bool weighted = false, Resampling resampling = Resampling::kPaper) {
+  // A weighted curve keeps its own fit's shape: re-represented, not refitted unweighted.
+  if (!weighted && fit.scaled && !positions.empty() && fit.curve.degree == degree &&
       points.size() >= static_cast<std::size_t>(count) && fit.curve.count() != count) {
     CurveFit refit;
     try {
@@ -155,7 +166,7 @@ Rerepresentation represent_one(const CurveFit& fit, std::span<const Point> point
       return r;
     }
   }
-  return rerepresent(fit, points, degree, count, periodic, bound, target);
+  return rerepresent(fit, points, degree, count, periodic, bound, target, resampling);
 }
 
 // Re-represents every curve on one common count, starting at max(degree + 1, counts) and
@@ -174,7 +185,8 @@ Represented represent(std::size_t n_curves, GetPoints&& points_of, GetPositions&
                       const Point& bound, int threads, bool shared_params, std::size_t max_points,
                       std::span<const double> shared_positions,
                       std::vector<Rerepresentation>* reuse, int reuse_count,
-                      const std::vector<char>* dirty) {
+                      const std::vector<char>* dirty, bool weighted = false,
+                      Resampling resampling = Resampling::kPaper) {
   Represented st;
   int common = degree + 1;
   for (const auto& f : fits) common = std::max(common, f.curve.count());
@@ -202,7 +214,8 @@ Represented represent(std::size_t n_curves, GetPoints&& points_of, GetPositions&
         st.curves[i] =
             represent_one(fits[i], points_of(i), positions_of(i), degree, common, periodic, bound,
                           shared_params ? std::span<const double>(st.shared_parameters)
-                                        : std::span<const double>());
+                                        : std::span<const double>(),
+                          weighted, resampling);
       }
       if (!st.curves[i].holds) failed.store(true, std::memory_order_relaxed);
     });
@@ -218,6 +231,37 @@ Represented represent(std::size_t n_curves, GetPoints&& points_of, GetPositions&
   st.common = common;
   for (const auto& c : st.curves) st.repaired += c.repair_rounds > 0 ? 1 : 0;
   return st;
+}
+
+// [seams] The weights of the columns' points (control point i of row j at [i * M + j]): the
+// mean weight of row j's points that control point i influences, each counted by its basis
+// value at the point's parameter; the row's mean weight where it influences none. Empty for
+// unweighted rows.
+std::vector<double> control_weights(const Rows& rows, const std::vector<Rerepresentation>& curves,
+                                    int nu, int threads) {
+  if (!rows.weighted()) return {};
+  const std::size_t M = rows.size();
+  std::vector<double> w(static_cast<std::size_t>(nu) * M, 1.0);
+  parallel_for(M, threads, [&](std::size_t j) {
+    const auto pw = rows.row_weights(j);
+    const Curve& c = curves[j].curve;
+    std::vector<double> sum(static_cast<std::size_t>(nu), 0.0), mass(sum);
+    double mean = 0;
+    std::array<double, kMaxDegree + 1> b;
+    for (std::size_t k = 0; k < pw.size(); ++k) {
+      mean += pw[k] / static_cast<double>(pw.size());
+      if (c.degree == 0) continue;
+      const int f = eval_basis(c.degree, nu, c.periodic, curves[j].parameters[k], b.data());
+      for (int a = 0; a <= c.degree; ++a) {
+        const int i = wrap_index(f + a, nu);
+        sum[i] += b[a] * pw[k];
+        mass[i] += b[a];
+      }
+    }
+    for (int i = 0; i < nu; ++i)
+      w[static_cast<std::size_t>(i) * M + j] = mass[i] > 0 ? sum[i] / mass[i] : mean;
+  });
+  return w;
 }
 
 template <class GetPoints>
@@ -279,17 +323,23 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
 
   // Positions of the points along their rows (none for the paper's rule): docs/method.md 7.4.
   const bool geometric = rule_ != Parametrization::kPaper;
+  // [seams hook] Fractional seams (RowSeam::offset): positions measured from each row's seam
+  // (the paper's rule then uses uniform positions, its own to rounding).
+  const bool seam_positions = !row_seam_offsets_.empty();
+  const bool row_geometric = geometric || seam_positions;
   std::vector<double> row_positions;
-  if (geometric) {
+  if (row_geometric) {
     row_positions.resize(rows.total_points());
     parallel_for(M, threads_, [&](std::size_t j) {
-      const auto f = normalized_positions(rows[j], rule_, o_.closed_u);
+      auto f =
+          normalized_positions(rows[j], geometric ? rule_ : Parametrization::kUniform, o_.closed_u);
+      if (seam_positions) shift_positions(f, row_seam_offsets_[j]);
       std::copy(f.begin(), f.end(),
                 row_positions.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[j]));
     });
   }
   auto row_positions_of = [&](std::size_t j) {
-    if (!geometric) return std::span<const double>();
+    if (!row_geometric) return std::span<const double>();
     return std::span<const double>(row_positions.data() + rows.offsets()[j], rows[j].size());
   };
 
@@ -300,11 +350,14 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   row_options.shared_positions = rule_ == Parametrization::kUniform;
   std::vector<CurveFit> fits;
   if (changed) fits = row_fits_;
+  // [seams hook] Weighted rows: weighted least squares in the curve stage.
+  const WeightsOf row_weights_of =
+      rows.weighted() ? WeightsOf([&](std::size_t j) { return rows.row_weights(j); }) : WeightsOf();
   rows_refitted_ = fit_curves(M, row_points, row_positions_of, row_options, o_.row_count_hints,
-                              threads_, fits, changed);
+                              threads_, fits, changed, row_weights_of);
   // `fast_fits` (the searches' own results) are what an update chains its hints from.
   std::vector<CurveFit> fast_fits = fits;
-  exact_maximum(fits, row_points, row_positions_of, row_options, threads_);
+  exact_maximum(fits, row_points, row_positions_of, row_options, threads_, row_weights_of);
   // Rows whose fit changed need a new re-representation.
   std::vector<char> dirty(M, 1);
   if (changed)
@@ -313,9 +366,10 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   report("rows", M, M);
 
   // Re-representation on the common count nu (docs/method.md 4).
-  Represented rs = represent(M, row_points, row_positions_of, fits, o_.degree_u, o_.closed_u, bound,
-                             threads_, false, longest, {}, changed ? &row_curves_ : nullptr,
-                             row_common_, changed ? &dirty : nullptr);
+  Represented rs =
+      represent(M, row_points, row_positions_of, fits, o_.degree_u, o_.closed_u, bound, threads_,
+                false, longest, {}, changed ? &row_curves_ : nullptr, row_common_,
+                changed ? &dirty : nullptr, rows.weighted(), o_.rerepresentation);
   const int nu = rs.common;
 
   // Transverse stage: column i holds control point i of every row curve (docs/method.md 5).
@@ -327,21 +381,31 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
     return std::span<const Point>(columns.data() + i * M, M);
   };
   // One position per row, shared by every column (the guarantee needs one v per row).
+  // [seams hook] The fold guard may set its own rule across the rows (across_).
+  const Parametrization across = across_.value_or(rule_);
   const std::vector<double> column_positions =
-      geometric
-          ? averaged_positions(static_cast<std::size_t>(nu), column_points, rule_, o_.closed_v)
+      across != Parametrization::kPaper
+          ? averaged_positions(static_cast<std::size_t>(nu), column_points, across, o_.closed_v)
           : std::vector<double>();
   auto column_positions_of = [&](std::size_t) { return std::span<const double>(column_positions); };
+  // [seams hook] Weights across (docs/seams.md): control point i of row j weighs the mean
+  // weight of the row's points it influences, each counted by its basis value there.
+  const std::vector<double> column_weights = control_weights(rows, rs.curves, nu, threads_);
+  const WeightsOf column_weights_of =
+      column_weights.empty() ? WeightsOf() : WeightsOf([&](std::size_t i) {
+        return std::span<const double>(column_weights.data() + i * M, M);
+      });
   report("columns", 0, static_cast<std::size_t>(nu));
   CurveFitOptions column_options{o_.degree_v, o_.closed_v, bound, o_.search};
   column_options.shared_positions = true;
   std::vector<CurveFit> column_fits;
   fit_curves(static_cast<std::size_t>(nu), column_points, column_positions_of, column_options,
-             o_.column_count_hints, threads_, column_fits, nullptr);
-  exact_maximum(column_fits, column_points, column_positions_of, column_options, threads_);
+             o_.column_count_hints, threads_, column_fits, nullptr, column_weights_of);
+  exact_maximum(column_fits, column_points, column_positions_of, column_options, threads_,
+                column_weights_of);
   Represented cs = represent(static_cast<std::size_t>(nu), column_points, column_positions_of,
                              column_fits, o_.degree_v, o_.closed_v, bound, threads_, true, M,
-                             column_positions, nullptr, 0, nullptr);
+                             column_positions, nullptr, 0, nullptr, rows.weighted());
   report("columns", static_cast<std::size_t>(nu), static_cast<std::size_t>(nu));
   const int nv = cs.common;
 
@@ -411,18 +475,68 @@ FitResult SurfaceFitter::finish(Attempt& at, int tightenings, const DeviationChe
   r.closed_u = o_.closed_u;
   r.closed_v = o_.closed_v;
   r.parametrization = rule_;
+  r.parametrization_across = across_.value_or(rule_);
   r.tightenings = tightenings;
   r.roundoff = roundoff_;
+  {  // [seams hook] Shape measures (fold_check.h) on the centred surface and rows.
+    const BoundingBox box{box_.min - centre_, box_.max - centre_};
+    Surface centred = out.surface;
+    for (Point& p : centred.control) p -= centre_;
+    const ShapeMeasures m = measure_shape(centred, centred_, out.u, out.v, box, o_.closed_u);
+    r.fold = m.fold;
+    r.box_excursion = m.box_excursion;
+    r.row_gap = m.row_gap;
+  }
   r.seconds = now() - seconds_start;
   return out;
 }
 
+namespace {
+long size_of(const FitResult& f) {
+  return static_cast<long>(f.surface.count_u) * f.surface.count_v;
+}
+}  // namespace
+
 FitResult SurfaceFitter::fit(const Rows& rows) {
+  // [seams hook] Seam alignment and orientation (seam_alignment.h, docs/seams.md), for every
+  // method: the fit runs on the re-ordered rows; u, the worst point and the report refer to
+  // the original points. update() refits in full after an aligned fit (valid_ cleared).
+  if (o_.seam != SeamMode::kKeep || o_.orient != OrientMode::kKeep) {
+    const RowAlignment a = alignment_for(rows, o_);
+    if (!a.identity()) {
+      validate(rows, o_);  // errors name the original rows and points
+      row_seam_offsets_ = seam_offsets(a, o_.closed_u);
+      FitResult r = fit_given(apply_alignment(rows, a));
+      row_seam_offsets_.clear();
+      restore_original_order(r, rows, a);
+      valid_ = false;
+      return r;
+    }
+  }
+  return fit_given(rows);
+}
+
+FitResult SurfaceFitter::fit_given(const Rows& rows) {
+  if (o_.method == FitMethod::kSurface && rows.weighted()) {
+    // The surface search fits unweighted least squares; weighted rows take the two stages,
+    // whose curve stage weighs its equations (docs/seams.md). The report says sfit01.
+    FitOptions o = o_;
+    o.method = FitMethod::kSfit01;
+    if (o.parametrization == Parametrization::kAuto) o.parametrization = Parametrization::kPaper;
+    SurfaceFitter two_stages(o);
+    two_stages.row_seam_offsets_ = row_seam_offsets_;
+    valid_ = false;
+    rows_refitted_ = rows.size();
+    return two_stages.fit_given(rows);
+  }
   if (o_.method == FitMethod::kSurface) {
     // The surface search has no per-row state to reuse: update() refits in full.
     valid_ = false;
     rows_refitted_ = rows.size();
-    return fit_surface_search(rows, o_);
+    FitOptions o = o_;  // the rows are aligned already (fit())
+    o.seam = SeamMode::kKeep;
+    o.orient = OrientMode::kKeep;
+    return fit_surface_search(rows, o, row_seam_offsets_);
   }
   if (o_.parametrization != Parametrization::kFewest) return fit_rule(rows, o_.parametrization);
   // Every rule in turn; the surface with the fewest control points wins (the first rule on a
@@ -436,8 +550,9 @@ FitResult SurfaceFitter::fit(const Rows& rows) {
     const auto size = [](const FitResult& f) {
       return static_cast<long>(f.surface.count_u) * f.surface.count_v;
     };
-    if (!best || (r.report.within_tolerance && !best->report.within_tolerance) ||
-        (r.report.within_tolerance == best->report.within_tolerance && size(r) < size(*best)))
+    // [seams] Within tolerance first, then fold-free, then the fewest control points.
+    const auto rank = [&](const FitResult& f) { return 2 * !f.report.within_tolerance + folds(f); };
+    if (!best || rank(r) < rank(*best) || (rank(r) == rank(*best) && size(r) < size(*best)))
       best = std::move(r);
   }
   valid_ = false;
@@ -446,6 +561,44 @@ FitResult SurfaceFitter::fit(const Rows& rows) {
 }
 
 FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
+  // [seams hook] The fold guard (fold_check.h, docs/seams.md): a surface that doubles back on
+  // itself between rows is refitted with chord-length, then centripetal, positions across the
+  // rows (uneven row spacing at the paper's even v is what folds it); the fold-free one with
+  // the fewest control points wins. Where none is fold-free, the least folded stays and its
+  // report.fold says by how much (the CLI warns).
+  const double t0 = now();
+  FitResult r = fit_rule_unguarded(rows, requested);
+  if (!o_.fold_guard || !folds(r)) return r;
+  const Parametrization used = rule_;
+  std::optional<FitResult> best;
+  for (Parametrization across : {Parametrization::kChord, Parametrization::kCentripetal}) {
+    across_ = across;
+    try {
+      FitResult c = fit_rule_unguarded(rows, requested);
+      if (c.report.within_tolerance && !folds(c) && stays_near_the_data(c.surface, box_) &&
+          (!best || size_of(c) < size_of(*best)))
+        best = std::move(c);
+    } catch (const Error& e) {
+      if (e.code() != ErrorCode::kToleranceNotMet) throw;
+    }
+  }
+  across_.reset();
+  valid_ = false;  // update() refits in full
+  if (!best) {
+    rule_ = used;
+    r.report.seconds = now() - t0;
+    return r;
+  }
+  rule_ = best->report.parametrization;
+  best->report.seconds = now() - t0;
+  return std::move(*best);
+}
+
+bool SurfaceFitter::folds(const FitResult& r) const {
+  return r.report.fold > kFoldRelative * box_.diagonal();
+}
+
+FitResult SurfaceFitter::fit_rule_unguarded(const Rows& rows, Parametrization requested) {
   rule_ = requested;
   if (rule_ == Parametrization::kPaper) return fit_with_rule(rows);
   // The geometric rules (docs/method.md 7.4) hold the tolerance on their own where they can; where
@@ -457,7 +610,8 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
   const double t0 = now();
   try {
     FitResult r = fit_with_rule(rows);
-    if (r.report.within_tolerance && !failed_guard(r.surface, box_)) {
+    if (r.report.within_tolerance && !failed_guard(r.surface, box_) &&
+        !(o_.fold_guard && folds(r))) {
       r.report.seconds = now() - t0;
       return r;
     }
@@ -508,6 +662,8 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   if (!valid_ || rows.size() != centred_.size() || box.min != box_.min || box.max != box_.max ||
       rule_ != o_.parametrization)  // (never equal for kFewest: full refits)
     return fit(rows);
+  // [seams hook] Rows that need re-ordering: a full fit (fit() aligns them).
+  if (!alignment_for(rows, o_).identity()) return fit(rows);
   // Same box, so the same centre, round-off allowance and budget: refresh the edited rows.
   std::vector<char> mark(rows.size(), 0);
   for (std::size_t j : changed) mark.at(j) = 1;
@@ -527,6 +683,7 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   FitResult out = finish(at, 0, check, t0);
   if (rule_ != Parametrization::kPaper && failed_guard(out.surface, box_))
     return fit(rows);  // fit() falls back to the paper's rule: do exactly that
+  if (o_.fold_guard && folds(out)) return fit(rows);  // [seams hook] fit() guards the fold
   valid_ = true;
   return out;
 }

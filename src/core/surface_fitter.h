@@ -2,6 +2,7 @@
 // (docs/method.md 7.7). Private: the public faces are fit_surface() and IncrementalFit.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "rerepresent.h"
@@ -10,7 +11,9 @@
 namespace sfit::detail {
 
 /// FitMethod::kSurface (surface_method.cpp).
-FitResult fit_surface_search(const Rows& rows, const FitOptions& options);
+/// `seam_offsets`: the fractional seams of rows aligned by SurfaceFitter::fit() (docs/seams.md).
+FitResult fit_surface_search(const Rows& rows, const FitOptions& options,
+                             std::span<const double> seam_offsets = {});
 
 class SurfaceFitter {
  public:
@@ -29,12 +32,23 @@ class SurfaceFitter {
   /// and the check are redone as fit() does them. Falls back to fit() where reuse is not
   /// exact: a changed bounding box (the centring changes), a tightened budget, no state.
   FitResult update(const Rows& rows, const std::vector<std::size_t>& changed);
+  /// fit() on rows aligned already, with their fractional seams (fit_surface_search()'s
+  /// two-stage bound on the rows fit() aligned).
+  FitResult fit_aligned(const Rows& rows, std::span<const double> seam_offsets) {
+    row_seam_offsets_.assign(seam_offsets.begin(), seam_offsets.end());
+    FitResult r = fit_given(rows);
+    row_seam_offsets_.clear();
+    return r;
+  }
   /// Rows refitted by the last fit() or update().
   std::size_t rows_refitted() const { return rows_refitted_; }
 
  private:
   struct Attempt;
+  FitResult fit_given(const Rows& rows);  // fit() on rows as given (no seam alignment)
   FitResult fit_rule(const Rows& rows, Parametrization requested);
+  FitResult fit_rule_unguarded(const Rows& rows, Parametrization requested);  // no fold guard
+  bool folds(const FitResult& r) const;
   FitResult fit_with_rule(const Rows& rows);
   Attempt fit_once(const Point& bound, const std::vector<char>* changed);
   FitResult finish(Attempt& at, int tightenings, const struct DeviationCheck& check,
@@ -57,6 +71,9 @@ class SurfaceFitter {
   std::vector<Rerepresentation> row_curves_;
   int row_common_ = 0;
   std::size_t rows_refitted_ = 0;
+  std::vector<double> row_seam_offsets_;
+  std::optional<Parametrization> across_;  // [seams] the fold guard's rule across the rows  //
+                                           // [seams] fractional seams of the rows being fitted
 };
 
 }  // namespace sfit::detail

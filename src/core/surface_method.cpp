@@ -18,6 +18,7 @@
 #include "parallel.h"
 #include "sfit/curve_fit.h"
 #include "sfit/error.h"
+#include "sfit/fold_check.h"
 #include "surface_fitter.h"
 #include "tensor_lsq.h"
 
@@ -132,8 +133,15 @@ std::vector<Parametrization> rules_of(Parametrization p) {
   return {p};
 }
 
-TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads) {
-  return TensorSpec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, rule, threads};
+TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads,
+                   std::span<const double> seam_offsets) {
+  return TensorSpec{o.degree_u,
+                    o.degree_v,
+                    o.closed_u,
+                    o.closed_v,
+                    rule,
+                    threads,
+                    std::vector<double>(seam_offsets.begin(), seam_offsets.end())};
 }
 
 // The surface at one pair by one norm (centred), or nullopt where none was made.
@@ -151,6 +159,11 @@ std::optional<Surface> solve_pair(TensorProblem& prob, FitNorm norm, int nu, int
 FitResult assemble(const Frame& fr, Surface s, std::vector<double> u, std::vector<double> v,
                    const DeviationCheck& c, const FitOptions& o) {
   FitResult out;
+  // Shape measures (fold_check.h, docs/seams.md) on the centred surface and rows.
+  const ShapeMeasures m = measure_shape(s, fr.centred, u, v, fr.centred_box, o.closed_u);
+  out.report.fold = m.fold;
+  out.report.box_excursion = m.box_excursion;
+  out.report.row_gap = m.row_gap;
   for (Point& p : s.control) p += fr.centre;
   out.surface = std::move(s);
   out.u = std::move(u);
@@ -175,6 +188,10 @@ FitResult assemble(const Frame& fr, Surface s, std::vector<double> u, std::vecto
   return out;
 }
 
+bool folds(const FitResult& f, const BoundingBox& box) {
+  return f.report.fold > kFoldRelative * box.diagonal();
+}
+
 void check_counts(const FitOptions& o) {
   const auto& c = *o.counts;
   const int lo[2] = {o.degree_u + 1, o.degree_v + 1};
@@ -191,7 +208,8 @@ void check_counts(const FitOptions& o) {
 
 // FitOptions::counts: the surface at exactly that pair, the first rule that holds (else the
 // one closest to holding); minimax where least squares does not hold and the norm allows.
-FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0) {
+FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0,
+                        std::span<const double> seam_offsets) {
   check_counts(o);
   const Frame fr(rows, o);
   const int nu = (*o.counts)[0], nv = (*o.counts)[1];
@@ -203,7 +221,7 @@ FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0) {
   FitNorm best_norm = FitNorm::kL2;
   long tried = 0;
   for (Parametrization rule : rules_of(o.parametrization)) {
-    TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads));
+    TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads, seam_offsets));
     for (FitNorm norm : {FitNorm::kL2, FitNorm::kLinf}) {
       // kL2: least squares only; kLinf: minimax (least squares only where the minimax does
       // not hold, to return a surface); kAuto: minimax where this rule's least squares
@@ -275,10 +293,11 @@ long sfit01_lower_bound(const Rows& rows, const FitOptions& o) {
   return static_cast<long>(nu) * (o.degree_v + 1);
 }
 
-FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
+FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
+                             std::span<const double> seam_offsets) {
   const double t0 = now();
   validate(rows, o);
-  if (o.counts) return fit_at_counts(rows, o, t0);
+  if (o.counts) return fit_at_counts(rows, o, t0, seam_offsets);
 
   // The two-stage fit: a pair that holds, so the bound to beat. On large data at the paper's
   // rule it runs only if the search does not beat a lower bound on its count (its rows'
@@ -295,7 +314,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
   if (defer_base) {
     lower = sfit01_lower_bound(rows, o);
   } else {
-    base = SurfaceFitter(o1).fit(rows);
+    base = SurfaceFitter(o1).fit_aligned(rows, seam_offsets);
     if (base->report.within_tolerance)
       bound = static_cast<long>(base->surface.count_u) * base->surface.count_v;
   }
@@ -316,7 +335,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
     // The paper's parameters depend on a row's length, so a sample of the row has others:
     // on large data that rule is the two-stage fit's alone.
     if (step > 1 && rule == Parametrization::kPaper) continue;
-    TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads));
+    TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads, seam_offsets));
     const PairRange range{prob.min_u(), prob.max_u(), prob.min_v(), prob.max_v()};
     PairOracle l2([&](int nu, int nv) {
       // More control points than points leave the system singular.
@@ -336,8 +355,8 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
     } else {
       std::vector<double> sample_positions;
       const Rows sample = subsample(fr.centred, step, prob.positions_u(), sample_positions);
-      TensorProblem sp(sample, spec_of(o, rule, fr.threads), std::move(sample_positions),
-                       prob.positions_v());
+      TensorProblem sp(sample, spec_of(o, rule, fr.threads, seam_offsets),
+                       std::move(sample_positions), prob.positions_v());
       PairOracle on_sample([&](int nu, int nv) {
         if (static_cast<double>(nu) * nv > static_cast<double>(sample.total_points()) ||
             sp.cost(nu, nv) > solve_budget(sample.total_points()))
@@ -422,7 +441,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
       deferred = "; at most " + std::to_string(lower) +
                  ", a lower bound on sfit01's count, so sfit01 was not run";
     } else {
-      base = SurfaceFitter(o1).fit(rows);
+      base = SurfaceFitter(o1).fit_aligned(rows, seam_offsets);
       const long base_size = static_cast<long>(base->surface.count_u) * base->surface.count_v;
       if (best && base->report.within_tolerance &&
           base_size <= static_cast<long>(best->nu) * best->nv)
@@ -441,12 +460,26 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o) {
     return std::move(b);
   }
   // Remake the winner (deterministic: the same bits as when it was judged) and check it.
-  TensorProblem prob(fr.centred, spec_of(o, best->rule, fr.threads));
+  TensorProblem prob(fr.centred, spec_of(o, best->rule, fr.threads, seam_offsets));
   Surface s = *solve_pair(prob, best->norm, best->nu, best->nv, o.tolerance);
   std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(best->nv);
   DeviationCheck c;
   fr.judge(s, u, v, &c);
   FitResult out = assemble(fr, std::move(s), std::move(u), std::move(v), c, o);
+  // The fold guard (docs/seams.md): a winner that doubles back on itself between the rows
+  // yields to the two stages' surface, which guards its own folds.
+  if (o.fold_guard && folds(out, fr.box)) {
+    if (!base) base = SurfaceFitter(o1).fit_aligned(rows, seam_offsets);
+    if (base->report.within_tolerance && base->report.fold < out.report.fold) {
+      FitResult& b = *base;
+      b.report.method = FitMethod::kSfit01;
+      b.report.pairs_tried = tried;
+      b.report.stop_reason = "sfit01: the search's " + std::to_string(best->nu) + " x " +
+                             std::to_string(best->nv) + " folds more between the rows";
+      b.report.seconds = now() - t0;
+      return std::move(b);
+    }
+  }
   FitReport& r = out.report;
   r.parametrization = best->rule;
   r.norm = best->norm;

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 
+#include "aligned_fit.h"
 #include "basis.h"
 #include "parallel.h"
 #include "parameters.h"
@@ -93,12 +94,14 @@ TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec) : rows_(r
   }
   max_u_ = std::max<int>(min_u(), static_cast<int>(hi));
   max_v_ = std::max<int>(min_v(), static_cast<int>(M));
-  shared_u_ =
-      lo == hi && (spec.rule == Parametrization::kPaper || spec.rule == Parametrization::kUniform);
+  const bool shifted = !spec.seam_offsets.empty() && spec.rule != Parametrization::kPaper;
+  shared_u_ = lo == hi && !shifted &&
+              (spec.rule == Parametrization::kPaper || spec.rule == Parametrization::kUniform);
   if (spec.rule != Parametrization::kPaper) {
     positions_u_.resize(rows.total_points());
     parallel_for(M, spec.threads, [&](std::size_t j) {
-      const auto f = normalized_positions(rows[j], spec.rule, spec.closed_u);
+      auto f = normalized_positions(rows[j], spec.rule, spec.closed_u);
+      if (shifted) shift_positions(f, spec.seam_offsets[j]);
       std::copy(f.begin(), f.end(), positions_u_.begin() + rows.offsets()[j]);
     });
     positions_v_ = positions_across(rows, positions_u_, spec.rule, spec.closed_u, spec.closed_v);

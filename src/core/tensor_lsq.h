@@ -34,6 +34,9 @@ struct TensorSpec {
   bool closed_u = false, closed_v = false;
   Parametrization rule = Parametrization::kUniform;  ///< one of the four rules
   int threads = 1;
+  /// Closed rows aligned by a fractional seam (docs/seams.md): each row's offset in point
+  /// spacings; the geometric rules measure positions from it. Empty: none.
+  std::vector<double> seam_offsets;
 };
 
 class TensorProblem {

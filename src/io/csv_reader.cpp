@@ -100,7 +100,11 @@ class Parser {
         return;
       }
       x_ = 0, y_ = 1, z_ = 2;
-      columns_ = 3;
+      columns_ = f.size() == 4 ? 4 : 3;  // [seams] x,y,z,weight
+      if (columns_ == 4) {
+        w_ = 3;
+        layout_ = "x,y,z,weight";
+      }
     }
     if (f.size() != columns_)
       fail(ErrorCode::kInputSyntax, f.size() > columns_ ? f[columns_].column : s.size(),
@@ -121,6 +125,15 @@ class Parser {
       }
     }
     const Point p(number(f[x_]), number(f[y_]), number(f[z_]));
+    if (w_ != kNone) {  // [seams] the point's weight (docs/seams.md)
+      const double w = number(f[w_]);
+      if (!(w > 0)) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%g", w);
+        fail(ErrorCode::kInputData, f[w_].column, std::string("weight must be > 0, got ") + buf);
+      }
+      out_.rows.push_weight(w);
+    }
     if (out_.rows.open_row_size() == 0) out_.first_line.push_back(line_no_);
     out_.rows.push_point(p);
     last_point_line_ = line_no_;
@@ -174,6 +187,8 @@ class Parser {
                                   f.back().text.data() + f.back().text.size())) +
                  "')");
     x_ = at["x"], y_ = at["y"], z_ = at["z"];
+    if (at.count("weight")) w_ = at["weight"];
+    if (at.count("w")) w_ = at["w"];
     columns_ = f.size();
     if (at.count("row")) {
       by_row_column_ = true;
@@ -221,7 +236,8 @@ class Parser {
   std::size_t col_base_ = 0;
   bool layout_known_ = false;
   bool by_row_column_ = false;
-  std::size_t x_ = 0, y_ = 1, z_ = 2, row_ = 0, columns_ = 3;
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::size_t x_ = 0, y_ = 1, z_ = 2, row_ = 0, columns_ = 3, w_ = kNone;
   std::string layout_ = "x,y,z";
   bool has_row_ = false;
   std::string current_row_;

@@ -20,6 +20,7 @@ static_assert(std::endian::native == std::endian::little, ".srows is little-endi
 constexpr char kMagic[8] = {'S', 'F', 'I', 'T', 'R', 'O', 'W', 'S'};
 constexpr std::uint32_t kVersion = 1;
 constexpr std::uint64_t kHeaderBytes = 32;
+constexpr std::uint32_t kWeighted = 1;
 
 [[noreturn]] void syntax(const std::string& path, const std::string& what) {
   throw Error(ErrorCode::kInputSyntax, "not an sfit binary rows file: " + what,
@@ -51,7 +52,10 @@ RowsFile read_rows_binary(const std::string& path) {
   if (version != kVersion)
     syntax(path, "version " + std::to_string(version) + " (this sfit reads 1)");
   // Check the sizes before allocating anything: 8 M + 24 P must be exactly what follows.
-  if (M > size / 8 || P > size / 24 || kHeaderBytes + 8 * M + 24 * P != size)
+  // [seams] flags bit 0: P float64 weights follow the points (docs/seams.md).
+  if (flags & ~kWeighted) syntax(path, "unknown flags " + std::to_string(flags));
+  const std::uint64_t per_point = flags & kWeighted ? 32 : 24;
+  if (M > size / 8 || P > size / per_point || kHeaderBytes + 8 * M + per_point * P != size)
     syntax(path, "its size " + std::to_string(size) + " bytes does not match " + std::to_string(M) +
                      " rows and " + std::to_string(P) + " points");
   std::vector<std::uint64_t> lengths(M);
@@ -83,6 +87,18 @@ RowsFile read_rows_binary(const std::string& path) {
                     {block[k].x(), block[k].y(), block[k].z()});
     out.rows.add_row(block);
   }
+  if (flags & kWeighted) {
+    std::vector<double> w(P);
+    if (P && std::fread(w.data(), 8, P, f.get()) != P) syntax(path, "truncated weights");
+    for (std::uint64_t j = 0, i = 0; j < M; ++j)
+      for (std::uint64_t k = 0; k < lengths[j]; ++k, ++i)
+        if (!(w[i] > 0) || !std::isfinite(w[i]))
+          throw Error(
+              ErrorCode::kInputData, "weight must be a finite number > 0",
+              Place{.file = path, .row = static_cast<long>(j), .point = static_cast<long>(k)},
+              {w[i]});
+    out.rows.set_weights(std::move(w));
+  }
   out.first_line.clear();  // no lines in a binary file
   return out;
 }
@@ -91,7 +107,7 @@ void write_rows_binary(const std::string& path, const Rows& rows) {
   write_file_atomically(path, [&](std::ostream& o) {
     char header[kHeaderBytes];
     std::memcpy(header, kMagic, 8);
-    const std::uint32_t flags = 0;
+    const std::uint32_t flags = rows.weighted() ? kWeighted : 0;
     const std::uint64_t M = rows.size(), P = rows.total_points();
     std::memcpy(header + 8, &kVersion, 4);
     std::memcpy(header + 12, &flags, 4);
@@ -104,6 +120,9 @@ void write_rows_binary(const std::string& path, const Rows& rows) {
     }
     o.write(reinterpret_cast<const char*>(rows.points().data()),
             static_cast<std::streamsize>(24 * P));
+    if (rows.weighted())
+      o.write(reinterpret_cast<const char*>(rows.weights().data()),
+              static_cast<std::streamsize>(8 * P));
   });
 }
 

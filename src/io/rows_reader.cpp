@@ -40,10 +40,11 @@ class Parser {
       col_base_ = 0;
     }
     if (!s.empty() && s.back() == '\r') s.remove_suffix(1);
-    double v[3];
+    double v[4];
     int n = 0;
     std::size_t i = 0;
     bool comment = false;
+    std::size_t weight_col = 0;
     // One pass with a character-class table (this loop runs for every byte of the input).
     const std::size_t size = s.size();
     const char* data = s.data();
@@ -60,8 +61,9 @@ class Parser {
       std::size_t e = i + 1;
       while (e < size && kClass[static_cast<unsigned char>(data[e])] == kToken) ++e;
       const std::string_view tok = s.substr(i, e - i);
-      if (n == 3)
-        fail(ErrorCode::kInputSyntax, i, "more than 3 numbers on a line: '" + show(tok) + "'");
+      if (n == 4)
+        fail(ErrorCode::kInputSyntax, i, "more than 4 numbers on a line: '" + show(tok) + "'");
+      if (n == 3) weight_col = i;
       v[n++] = number(tok, i);
       i = e;
     }
@@ -72,8 +74,29 @@ class Parser {
     if (n < 3)
       fail(ErrorCode::kInputSyntax, s.size(),
            "expected 3 numbers (x y z), found " + std::to_string(n));
+    weight(n, v[3], weight_col);
     if (out_.rows.open_row_size() == 0) out_.first_line.push_back(line_no_);
     out_.rows.push_point(Point(v[0], v[1], v[2]));
+  }
+
+  // [seams] An optional 4th number, the point's weight (docs/seams.md): every point has one or
+  // none, and each is a finite number > 0.
+  void weight(int n, double w, std::size_t col) {
+    const bool has = n == 4;
+    if (out_.rows.points().empty()) weighted_ = has;
+    if (has != weighted_)
+      fail(ErrorCode::kInputSyntax, col,
+           has ? "a weight (4th number) here, but the first point has none: give every point "
+                 "x y z or every point x y z weight"
+               : "no weight (4th number) here, but the first point has one: give every point "
+                 "x y z weight");
+    if (!has) return;
+    if (!(w > 0)) {
+      char buf[40];
+      std::snprintf(buf, sizeof buf, "%g", w);
+      fail(ErrorCode::kInputData, col, std::string("weight must be > 0, got ") + buf);
+    }
+    out_.rows.push_weight(w);
   }
 
   void too_long() {
@@ -146,6 +169,7 @@ class Parser {
   RowsFile out_;
   long line_no_ = 0;
   std::size_t col_base_ = 0;
+  bool weighted_ = false;
 };
 
 }  // namespace

@@ -6,10 +6,10 @@
 #include <sstream>
 
 #include "input_file.h"
+#include "knots.h"
 #include "sfit/error.h"
 #include "sfit/fit_limits.h"
 #include "sfit/io/atomic_file.h"
-#include "knots.h"
 
 namespace sfit::io {
 
@@ -65,6 +65,16 @@ json report_to_json(const FitReport& r) {
   j["norm"] = std::string(to_string(r.norm));
   j["pairs_tried"] = r.pairs_tried;
   j["stop_reason"] = r.stop_reason;
+  // Seams and shape measures (docs/seams.md): rows re-ordered, [row, shift, reversed, offset].
+  json seams = json::array();
+  for (std::size_t k = 0; k < r.seams.size(); ++k)
+    if (r.seams[k].shift != 0 || r.seams[k].reversed || r.seams[k].offset != 0)
+      seams.push_back({k, r.seams[k].shift, r.seams[k].reversed, r.seams[k].offset});
+  j["seams"] = std::move(seams);
+  j["box_excursion"] = r.box_excursion;
+  j["fold"] = r.fold;
+  j["parameters_across"] = std::string(to_string(r.parametrization_across));
+  j["row_gap"] = r.row_gap;
   return j;
 }
 

@@ -13,6 +13,8 @@ namespace sfit::io {
 ///   extra columns ignored): each point's row is its `row` value; a row's points are
 ///   consecutive lines with the same value (a value seen again after another row is an error);
 /// - `x,y,z` (with or without a header line `x,y,z`): a blank line separates rows, as in .rows.
+/// A `weight` (or `w`) column, or a 4th field without a header, is each point's weight
+/// (docs/seams.md): a finite number > 0 on every line.
 /// Separators: comma or semicolon; quoted header names and a UTF-8 BOM are accepted; '#'
 /// starts a comment line; CRLF line ends are accepted.
 /// Throws Error with file:line:column as read_rows() does: kInputUnreadable, kInputSyntax

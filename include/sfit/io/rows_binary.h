@@ -3,7 +3,8 @@
 //
 // Layout (little-endian): 8 bytes "SFITROWS", uint32 version (1), uint32 flags (0),
 // uint64 M (rows), uint64 P (points), M x uint64 row lengths (each >= 1, summing to P),
-// then P x 3 float64 x, y, z. File size = 32 + 8 M + 24 P exactly.
+// then P x 3 float64 x, y, z. File size = 32 + 8 M + 24 P exactly. Flags bit 0 (weighted,
+// docs/seams.md): P float64 weights follow, one per point, and the size is 32 + 8 M + 32 P.
 #pragma once
 
 #include <string>

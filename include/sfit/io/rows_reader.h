@@ -20,7 +20,10 @@ struct RowsFile {
 /// The longest line accepted, in bytes (a longer one is an input-syntax error).
 inline constexpr std::size_t kMaxLineBytes = 1 << 20;
 
-/// Reads a .rows file ("-" reads standard input), streaming in blocks.
+/// Reads a .rows file ("-" reads standard input), streaming in blocks. A 4th number on a
+/// line is the point's weight (docs/seams.md): then every point has one, finite and > 0
+/// (kInputSyntax naming file:line where a point has 3 numbers and the first had 4, or the
+/// other way round; kInputData for a weight <= 0).
 /// Accepted: separators of spaces, tabs and commas; CRLF line ends; a UTF-8 byte-order mark;
 /// '#' comments (whole lines or trailing); several consecutive blank lines are one separator.
 /// Throws Error: kInputUnreadable (missing, unreadable, a directory), kInputSyntax

@@ -1,0 +1,127 @@
+#include "shapes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace sfit::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Rings around a path c(t), t in [0,1], of radii (a(t), b(t)) in the plane spanned by the
+// path's normal (in the plane of the path, normal to `up` x tangent) and `up`.
+Rows tube(const std::function<Point(double)>& c, const std::function<double(double)>& a,
+          const std::function<double(double)>& b, const Point& up, int rings,
+          const std::function<int(int)>& points) {
+  Rows out;
+  for (int j = 0; j < rings; ++j) {
+    const double t = static_cast<double>(j) / (rings - 1);
+    const double h = 1e-5;
+    const Point tangent = (c(std::min(1.0, t + h)) - c(std::max(0.0, t - h))).normalized();
+    const Point side = up.cross(tangent).normalized();
+    const Point normal = tangent.cross(side).normalized();
+    const int n = points(j);
+    for (int k = 0; k < n; ++k) {
+      const double th = 2 * kPi * k / n;
+      out.push_point(c(t) + a(t) * std::cos(th) * side + b(t) * std::sin(th) * normal);
+    }
+    out.end_row();
+  }
+  return out;
+}
+
+}  // namespace
+
+Rows teapot_body_like() {
+  Rows out;
+  const int rings = 24;
+  for (int j = 0; j < rings; ++j) {
+    const double z = 0.05 + 1.45 * j / (rings - 1);
+    const double r = 0.8 + 0.7 * std::sin(kPi * (0.15 + 0.75 * z / 1.5)) - 0.1 * z;
+    const int n = 40 + (j * 7) % 17;
+    // Each ring starts near the x axis, within 0.3 of its point spacing, as cut sections do.
+    const double start = 0.3 * 2 * kPi / n * std::sin(1.7 * j);
+    for (int k = 0; k < n; ++k) {
+      const double th = start + 2 * kPi * k / n;
+      out.push_point(Point(r * std::cos(th), r * std::sin(th), z));
+    }
+    out.end_row();
+  }
+  return out;
+}
+
+Rows teapot_handle_like() {
+  // A C-shaped arc behind the body (x < 0), from the top down.
+  auto c = [](double t) {
+    const double a = kPi * (0.35 + 1.1 * t);
+    return Point(-1.5 - 0.55 * std::sin(a), 0.0, 0.85 + 0.5 * std::cos(a));
+  };
+  return tube(
+      c, [](double) { return 0.09; }, [](double) { return 0.05; }, Point(0, 1, 0), 20,
+      [](int) { return 24; });
+}
+
+Rows teapot_spout_like() {
+  auto c = [](double t) { return Point(1.3 + 0.9 * t, 0.0, 0.35 + 0.2 * t + 0.8 * t * t); };
+  return tube(
+      c, [](double t) { return 0.22 - 0.13 * t; }, [](double t) { return 0.2 - 0.12 * t; },
+      Point(0, 1, 0), 16, [](int j) { return 20 + (j * 3) % 9; });
+}
+
+Rows fuselage_like() {
+  // Ring stations along x: dense at the nose, two rings 5 cm apart mid-body, sparse elsewhere.
+  const std::vector<double> x = {0.3,  0.8,  1.5,  2.4,   3.5,  4.8,  6.3,  8.0,  10.0, 12.5,
+                                 15.0, 17.5, 18.0, 18.05, 20.0, 22.5, 25.0, 27.0, 28.8, 30.4,
+                                 31.8, 33.0, 34.0, 34.9,  35.7, 36.4, 37.0, 37.5};
+  Rows out;
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    const double s = x[j];
+    // Radius: a rounded nose to 2 m, the cylinder, a tail cone to 0.3 m.
+    double r = 2.0;
+    if (s < 6.3) r = 2.0 * std::sqrt(1 - std::pow(1 - s / 6.3, 2));
+    if (s > 25.0) r = 2.0 - 1.7 * (s - 25.0) / 12.5;
+    const double zc = s > 25.0 ? 1.4 * std::pow((s - 25.0) / 12.5, 1.5) : 0.0;  // upsweep
+    const int n = 36 + static_cast<int>(j * 5) % 9;
+    for (int k = 0; k < n; ++k) {
+      const double th = 2 * kPi * k / n;
+      // Egg-shaped: taller above the floor line than below it.
+      const double y = r * std::cos(th);
+      const double z = zc + r * std::sin(th) * (1.015 + 0.065 * std::sin(th));
+      out.push_point(Point(s, y, z));
+    }
+    out.end_row();
+  }
+  return out;
+}
+
+Rows rotated_copy(const Rows& rows, std::uint32_t seed, bool reverse) {
+  std::mt19937 rng(seed);
+  Rows out;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto r = rows[j];
+    const std::size_t n = r.size();
+    const std::size_t s = std::uniform_int_distribution<std::size_t>(0, n - 1)(rng);
+    std::vector<Point> p(n);
+    for (std::size_t k = 0; k < n; ++k) p[k] = r[(s + k) % n];
+    if (reverse && j % 2 == 1) std::reverse(p.begin(), p.end());
+    out.add_row(p);
+  }
+  return out;
+}
+
+Rows every_other_reversed(const Rows& rows) {
+  Rows out;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    std::vector<Point> p(rows[j].begin(), rows[j].end());
+    if (j % 2 == 1) std::reverse(p.begin(), p.end());
+    out.add_row(p);
+  }
+  return out;
+}
+
+}  // namespace sfit::test
