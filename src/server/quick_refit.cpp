@@ -4,11 +4,20 @@ namespace sfit::server {
 
 FitOptions quick_refit_options(const FitOptions& full, const FitReport& last) {
   FitOptions q = full;
-  q.search = CountSearch::kKnown;
-  q.row_count_hints = last.row_counts;
-  q.column_count_hints = last.column_counts;
-  q.parametrization = last.parametrization;  // kFewest's pick, not four fits
   q.progress = {};
+  q.parametrization = last.parametrization;  // the rule the full fit picked, not four fits
+  if (last.method == FitMethod::kSurface) {
+    // The surface search's pair, solved once: no search (FitOptions::counts).
+    q.counts = std::array<int, 2>{last.count_u, last.count_v};
+    q.norm = last.norm;
+  } else {
+    // The two stages (asked for, or where the search kept their surface): their counts taken
+    // as the answer, one solve per row and column.
+    q.method = FitMethod::kSfit01;
+    q.search = CountSearch::kKnown;
+    q.row_count_hints = last.row_counts;
+    q.column_count_hints = last.column_counts;
+  }
   return q;
 }
 

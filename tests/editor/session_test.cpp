@@ -30,18 +30,30 @@ std::vector<Point> row_of(const Rows& rows, std::size_t j) {
 }
 
 TEST(QuickRefitOptions, TakeTheLastCountsAndTheRuleThatFitChose) {
-  Data d = ship();
-  d.options.parametrization = Parametrization::kFewest;
-  const FitResult full = fit_surface(d.rows, d.options);
-  const FitOptions q = quick_refit_options(d.options, full.report);
-  EXPECT_EQ(q.search, CountSearch::kKnown);
-  EXPECT_EQ(q.row_count_hints, full.report.row_counts);
-  EXPECT_EQ(q.column_count_hints, full.report.column_counts);
-  EXPECT_EQ(q.parametrization, full.report.parametrization);
-  EXPECT_NE(q.parametrization, Parametrization::kFewest);
-  EXPECT_EQ(q.tolerance, d.options.tolerance);
-  // At unchanged data the quick refit is the full fit's surface.
-  test::expect_same_surface(fit_surface(d.rows, q), full);
+  for (FitMethod method : {FitMethod::kSurface, FitMethod::kSfit01}) {
+    Data d = ship();
+    d.options.method = method;
+    d.options.parametrization = Parametrization::kFewest;
+    const FitResult full = fit_surface(d.rows, d.options);
+    const FitOptions q = quick_refit_options(d.options, full.report);
+    if (full.report.method == FitMethod::kSurface) {
+      // The search's pair, solved once.
+      ASSERT_TRUE(q.counts.has_value());
+      EXPECT_EQ((*q.counts)[0], full.report.count_u);
+      EXPECT_EQ((*q.counts)[1], full.report.count_v);
+      EXPECT_EQ(q.norm, full.report.norm);
+    } else {
+      EXPECT_EQ(q.method, FitMethod::kSfit01);
+      EXPECT_EQ(q.search, CountSearch::kKnown);
+      EXPECT_EQ(q.row_count_hints, full.report.row_counts);
+      EXPECT_EQ(q.column_count_hints, full.report.column_counts);
+    }
+    EXPECT_EQ(q.parametrization, full.report.parametrization);
+    EXPECT_NE(q.parametrization, Parametrization::kFewest);
+    EXPECT_EQ(q.tolerance, d.options.tolerance);
+    // At unchanged data the quick refit is the full fit's surface.
+    test::expect_same_surface(fit_surface(d.rows, q), full);
+  }
 }
 
 TEST(Session, ADragRefitsQuicklyThenFullyAndIsOneUndoStep) {
