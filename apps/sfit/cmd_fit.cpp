@@ -160,28 +160,6 @@ int run_fit(const FitArgs& a) {
           "meshes and offsets of it will fail",
           g(r.fold), o.fold_guard ? "no rule across the rows avoided it" : "--no-fold-guard"));
   }
-  {  // Seams and shape measures (docs/seams.md).
-    int moved = 0, reversed = 0;
-    for (const RowSeam& s : r.seams) {
-      moved += s.shift != 0 || s.offset != 0;
-      reversed += s.reversed;
-    }
-    if (moved || reversed)
-      say(
-          fmt::format("seams: {} rows start elsewhere, {} rows reversed (--seam/--orient keep: as "
-                      "given)",
-                      moved, reversed));
-    if (r.parametrization_across != r.parametrization)
-      say(fmt::format("{} parameters across the rows: the surface folded with {}",
-                      to_string(r.parametrization_across), to_string(r.parametrization)));
-    say(fmt::format("shape: fold {}, out of the data's box by {}, farthest from the rows {}",
-                    g(r.fold), g(r.box_excursion), g(r.row_gap)));
-    if (r.fold > kFoldRelative * box.diagonal())
-      say(fmt::format(
-          "warning: the surface folds back on itself by {} between rows ({}); "
-          "meshes and offsets of it will fail",
-          g(r.fold), o.fold_guard ? "no rule across the rows avoided it" : "--no-fold-guard"));
-  }
   if (!r.within_tolerance)
     throw Error(
         ErrorCode::kToleranceNotMet,
