@@ -551,7 +551,9 @@ FitResult SurfaceFitter::fit_given(const Rows& rows) {
       return static_cast<long>(f.surface.count_u) * f.surface.count_v;
     };
     // [seams] Within tolerance first, then fold-free, then the fewest control points.
-    const auto rank = [&](const FitResult& f) { return 2 * !f.report.within_tolerance + folds(f); };
+    const auto rank = [&](const FitResult& f) {
+      return 2 * !f.report.within_tolerance + (o_.fold_guard && folds(f));
+    };
     if (!best || rank(r) < rank(*best) || (rank(r) == rank(*best) && size(r) < size(*best)))
       best = std::move(r);
   }

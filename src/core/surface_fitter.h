@@ -71,9 +71,8 @@ class SurfaceFitter {
   std::vector<Rerepresentation> row_curves_;
   int row_common_ = 0;
   std::size_t rows_refitted_ = 0;
-  std::vector<double> row_seam_offsets_;
-  std::optional<Parametrization> across_;  // [seams] the fold guard's rule across the rows  //
-                                           // [seams] fractional seams of the rows being fitted
+  std::vector<double> row_seam_offsets_;   // fractional seams of the rows being fitted
+  std::optional<Parametrization> across_;  // the fold guard's rule across the rows
 };
 
 }  // namespace sfit::detail
