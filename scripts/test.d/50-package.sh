@@ -34,7 +34,7 @@ set +e
 code=$?
 set -e
 [ "$code" -eq 2 ] || fail "STEP without OpenCASCADE: exit $code, expected 2"
-grep -q 'built without OpenCASCADE' "$tmp/err" || fail "STEP without OpenCASCADE: $(cat "$tmp/err")"
+grep -q 'needs the CAD part (OpenCASCADE), which this build of sfit lacks' "$tmp/err" || fail "STEP without OpenCASCADE: $(cat "$tmp/err")"
 [ ! -e "$tmp/hull.step" ] || fail "a STEP file was written without OpenCASCADE"
 help=$("$cli" --help)
 if grep -q '^ *render ' <<<"$help"; then fail "'render' exists without libpng"; fi

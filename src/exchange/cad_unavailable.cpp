@@ -34,7 +34,7 @@ bool is_exchange_input(const std::string& path) {
   return e == "step" || e == "stp" || e == "igs" || e == "iges";
 }
 
-SectionsFile read_sections(const std::string& path) {
+SectionsFile read_sections(const std::string& path, const SectionReadOptions&) {
   unavailable(path);
 }
 
