@@ -5,6 +5,11 @@
 
 namespace sfit::detail {
 
+namespace {
+// The step down from a column's top pair that failed only between the points.
+constexpr double kBackOff = 0.8;
+}  // namespace
+
 const PairVerdict& PairOracle::operator()(int nu, int nv) {
   auto it = memo_.find({nu, nv});
   if (it != memo_.end()) return it->second;
@@ -42,14 +47,33 @@ PairChoice search_pairs(const PairRange& r, long bound, PairOracle& holds) {
   // The smallest nu at nv below min(cap, (best - 1) / nv), or nothing.
   auto column = [&](int nv, int cap) {
     if (static_cast<long>(r.min_u) * nv >= best_size) return;
-    const int hi =
+    int hi =
         static_cast<int>(std::min<long>({static_cast<long>(cap), r.max_u, (best_size - 1) / nv}));
     if (hi < r.min_u) return;
-    if (!holds(hi, nv).holds) {
+    if (r.affordable && !r.affordable(hi, nv)) {
+      // The largest affordable nu: a smaller cap on the column, not a verdict on it.
+      if (!r.affordable(r.min_u, nv)) return;
+      int ok = r.min_u, over = hi;
+      while (over - ok > 1) {
+        const int mid = ok + (over - ok) / 2;
+        (r.affordable(mid, nv) ? ok : over) = mid;
+      }
+      hi = ok;
+    }
+    // A top that holds T at every point but fails a guard (it swings out between the points,
+    // as fits close to interpolating a row can) says nothing of fewer control points: back
+    // off until one holds, or misses T at the points (then fewer miss it too).
+    int top = hi;
+    const PairVerdict* v = &holds(top, nv);
+    while (!v->holds && v->ratio <= 1 && top > r.min_u) {
+      top = std::max(r.min_u, std::min(top - 1, static_cast<int>(top * kBackOff)));
+      v = &holds(top, nv);
+    }
+    if (!v->holds) {
       f[nv] = {hi + 1, false};
       return;
     }
-    int bad = r.min_u - 1, good = hi;
+    int bad = r.min_u - 1, good = top;
     while (good - bad > 1) {
       const int mid = bad + (good - bad) / 2;
       if (holds(mid, nv).holds) {

@@ -35,6 +35,10 @@ class PairOracle {
 
 struct PairRange {
   int min_u, max_u, min_v, max_v;
+  /// Whether a pair is worth solving at all (its cost within the search's budget); empty:
+  /// every pair. Must be monotone: a pair with fewer control points along u is affordable
+  /// where one with more is. The search caps each column's nu at the largest affordable one.
+  std::function<bool(int, int)> affordable = {};
 };
 
 struct PairChoice {

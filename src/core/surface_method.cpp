@@ -38,10 +38,16 @@ constexpr int kLinfTries = 2;
 // and a pair that size is far from the fewest control points anyway wherever the two-stage
 // bound leaves room (at 10^6 points, 2 % of them as control points cost ~4e9).
 constexpr double kSolveBudget = 4e9;
-// ... and at most this many flops per data point of the problem (2e8 at least): on a 10^5-point
-// sample, a pair costing more is far above 2 % of the points as control points.
+// ... and at most kSolvePerPoint flops per data point of the problem (kSolveFloor at least).
+// The search's columns are capped at the largest affordable nu (PairRange::affordable), so a
+// costly pair only narrows a column. The pairs this leaves out are near interpolation, where
+// the rules other than the paper's swing between the points anyway: on the shared sets the
+// counts stayed or fell when the factor went from 2000 to 500 and the floor from 2e8 to 4e6,
+// and the search's time fell by 2-5x on the largest (docs/control-points.md).
+constexpr double kSolvePerPoint = 500;
+constexpr double kSolveFloor = 4e6;
 double solve_budget(std::size_t points) {
-  return std::clamp(2000.0 * static_cast<double>(points), 2e8, kSolveBudget);
+  return std::clamp(kSolvePerPoint * static_cast<double>(points), kSolveFloor, kSolveBudget);
 }
 
 // Above this many points the search runs on every step-th point of each row (the positions
@@ -336,7 +342,10 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     // on large data that rule is the two-stage fit's alone.
     if (step > 1 && rule == Parametrization::kPaper) continue;
     TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads, seam_offsets));
-    const PairRange range{prob.min_u(), prob.max_u(), prob.min_v(), prob.max_v()};
+    const PairRange range{prob.min_u(), prob.max_u(), prob.min_v(), prob.max_v(),
+                          [&](int nu, int nv) {
+                            return prob.cost(nu, nv) <= solve_budget(fr.centred.total_points());
+                          }};
     PairOracle l2([&](int nu, int nv) {
       // More control points than points leave the system singular.
       if (static_cast<double>(nu) * nv > static_cast<double>(fr.centred.total_points()))
@@ -365,7 +374,9 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
         if (!s) return PairVerdict{false, HUGE_VAL};
         return fr.judge(*s, sp.u_at(nu), sp.v_at(nv), nullptr, &sample);
       });
-      const PairRange sample_range{sp.min_u(), sp.max_u(), sp.min_v(), sp.max_v()};
+      const PairRange sample_range{
+          sp.min_u(), sp.max_u(), sp.min_v(), sp.max_v(),
+          [&](int nu, int nv) { return sp.cost(nu, nv) <= solve_budget(sample.total_points()); }};
       const PairChoice c = search_pairs(sample_range, bound, on_sample);
       tried += on_sample.tried();
       if (c.nu > 0) {

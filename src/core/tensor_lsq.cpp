@@ -8,6 +8,7 @@
 
 #include "aligned_fit.h"
 #include "basis.h"
+#include "kron_pcg.h"
 #include "parallel.h"
 #include "parameters.h"
 
@@ -19,6 +20,12 @@ namespace {
 constexpr std::size_t kMomentBytes = std::size_t{256} << 20;
 // Below this bound on the factorisation's flops (cost()), Eigen's simplicial Cholesky.
 constexpr double kSimplicialFlops = 2e8;
+// Above this bound, conjugate gradients first (kron_pcg.h; TensorSpec::iterative), where nu
+// is at most this share of the shortest row's points: closer to interpolating the rows, the
+// rows' Gram matrices differ too much for the Kronecker preconditioner (CG then failed to
+// converge in 150 iterations on volcano and the teapot body; 3-25 iterations below it).
+constexpr double kIterativeFlops = 1e6;
+constexpr double kIterativeShare = 0.75;
 
 // Row j resampled at fraction s of its positions f (ascending; closed rows wrap to point 0).
 Point resample(std::span<const Point> row, std::span<const double> f, double s, bool closed) {
@@ -33,6 +40,17 @@ Point resample(std::span<const Point> row, std::span<const double> f, double s, 
   const Point& p1 = k < n ? row[k] : (closed ? row[0] : row[n - 1]);
   const double w = f1 > f0 ? (s - f0) / (f1 - f0) : 0.0;
   return p0 + std::clamp(w, 0.0, 1.0) * (p1 - p0);
+}
+// Whether every row has the same points' positions (so the same u at any nu, and one Gram
+// matrix: the separable solve), e.g. a grid evenly spaced along its rows at any rule.
+bool same_positions(const Rows& rows, const std::vector<double>& positions) {
+  const std::size_t n = rows[0].size();
+  if (positions.size() != rows.total_points()) return false;
+  for (std::size_t j = 1; j < rows.size(); ++j)
+    if (rows[j].size() != n || !std::equal(positions.begin(), positions.begin() + n,
+                                           positions.begin() + rows.offsets()[j]))
+      return false;
+  return true;
 }
 }  // namespace
 
@@ -94,6 +112,7 @@ TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec) : rows_(r
   }
   max_u_ = std::max<int>(min_u(), static_cast<int>(hi));
   max_v_ = std::max<int>(min_v(), static_cast<int>(M));
+  min_points_ = static_cast<int>(lo);
   const bool shifted = !spec.seam_offsets.empty() && spec.rule != Parametrization::kPaper;
   shared_u_ = lo == hi && !shifted &&
               (spec.rule == Parametrization::kPaper || spec.rule == Parametrization::kUniform);
@@ -105,18 +124,23 @@ TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec) : rows_(r
       std::copy(f.begin(), f.end(), positions_u_.begin() + rows.offsets()[j]);
     });
     positions_v_ = positions_across(rows, positions_u_, spec.rule, spec.closed_u, spec.closed_v);
+    shared_u_ = shared_u_ || same_positions(rows, positions_u_);
   }
 }
 
 TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec,
                              std::vector<double> positions_u, std::vector<double> positions_v)
     : rows_(rows), spec_(spec) {
-  std::size_t hi = 0;
-  for (std::size_t j = 0; j < rows.size(); ++j) hi = std::max(hi, rows[j].size());
+  std::size_t hi = 0, lo = rows[0].size();
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    hi = std::max(hi, rows[j].size());
+    lo = std::min(lo, rows[j].size());
+  }
+  min_points_ = static_cast<int>(lo);
   max_u_ = std::max<int>(min_u(), static_cast<int>(hi));
   max_v_ = std::max<int>(min_v(), static_cast<int>(rows.size()));
-  shared_u_ = false;
   positions_u_ = std::move(positions_u);
+  shared_u_ = same_positions(rows, positions_u_);
   positions_v_ = std::move(positions_v);
 }
 
@@ -281,12 +305,22 @@ bool TensorProblem::solve(int nu, int nv, Surface& out) {
   std::vector<double> st(n * wu * sv, 0.0);
   Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(n), 3);
   std::array<double, kMaxDegree + 1> bv;
+  // The Kronecker preconditioner's factors (kron_pcg.h): Gbar = sum_j G_j / sum_j s_j and
+  // H_s = sum_j s_j b_v b_v^T, s_j = trace(G_j).
+  std::vector<double> gbar(static_cast<std::size_t>(nu) * wu, 0.0),
+      hs(static_cast<std::size_t>(nv) * wv, 0.0);
+  double s_sum = 0;
   for (std::size_t j = 0; j < rows_.size(); ++j) {
     const int fv = eval_basis(pv, nv, spec_.closed_v, v[j], bv.data());
     const double* G = &m.gram[(shared_u_ ? 0 : j) * nu * wu];
     const Point* R = &m.rhs[j * nu];
+    double s_j = 0;
+    for (int i = 0; i < nu; ++i) s_j += G[i * wu];
+    for (std::size_t k = 0; k < gbar.size(); ++k) gbar[k] += G[k];
+    s_sum += s_j;
     for (int a = 0; a < wv; ++a) {
       const int l = wrap_index(fv + a, nv);
+      for (int d = 0; a + d < wv; ++d) hs[l * wv + d] += s_j * bv[a] * bv[a + d];
       for (int i = 0; i < nu; ++i) rhs.row(i * nv + l) += bv[a] * R[i].transpose();
       for (int b = 0; b < wv; ++b) {
         const double wab = bv[a] * bv[b];
@@ -324,7 +358,15 @@ bool TensorProblem::solve(int nu, int nv, Surface& out) {
   Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   A.setFromTriplets(trip.begin(), trip.end());
   Eigen::MatrixX3d x;
-  if (cost(nu, nv) < kSimplicialFlops) {
+  bool solved = false;
+  if (spec_.iterative && cost(nu, nv) >= kIterativeFlops && s_sum > 0 &&
+      nu <= kIterativeShare * min_points_) {
+    for (double& g : gbar) g /= s_sum;
+    solved = solve_kron_pcg(A, rhs, band_matrix(gbar.data(), nu, wu, spec_.closed_u),
+                            band_matrix(hs.data(), nv, wv, spec_.closed_v), x);
+  }
+  if (solved) {
+  } else if (cost(nu, nv) < kSimplicialFlops) {
     // Small systems: Eigen's simplicial factorisation. CHOLMOD's supernodal one starts
     // OpenMP threads and BLAS calls whose overhead was a third of a volcano fit at 1e-3.
     Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt(A);

@@ -37,6 +37,9 @@ struct TensorSpec {
   /// Closed rows aligned by a fractional seam (docs/seams.md): each row's offset in point
   /// spacings; the geometric rules measure positions from it. Empty: none.
   std::vector<double> seam_offsets;
+  /// Rows that do not share their u: conjugate gradients with a Kronecker preconditioner
+  /// (kron_pcg.h) before the sparse factorisation; false: the factorisation alone.
+  bool iterative = true;
 };
 
 class TensorProblem {
@@ -78,6 +81,7 @@ class TensorProblem {
   const Rows& rows_;
   TensorSpec spec_;
   int max_u_ = 0, max_v_ = 0;
+  int min_points_ = 0;               // the shortest row's points
   bool shared_u_ = false;            // every row has the same u (one Gram for all)
   std::vector<double> positions_u_;  // per point, rule != kPaper
   std::vector<double> positions_v_;  // per row, rule != kPaper
