@@ -16,6 +16,7 @@
 #include "minimax.h"
 #include "pair_search.h"
 #include "parallel.h"
+#include "search_frame.h"
 #include "sfit/curve_fit.h"
 #include "sfit/error.h"
 #include "sfit/fold_check.h"
@@ -26,10 +27,6 @@ namespace sfit::detail {
 
 namespace {
 
-// Minimax where least squares misses T by at most this factor (FitNorm::kAuto): the minimax
-// error at a pair is at least the least-squares one divided by sqrt(points), in practice
-// within 10-40 % of it on smooth data (docs/control-points.md measures it).
-constexpr double kLinfReach = 1.25;
 // Minimax fits per rule in the search (each is a linear program per axis).
 constexpr int kLinfTries = 2;
 
@@ -55,74 +52,6 @@ double solve_budget(std::size_t points) {
 // until it holds there, and descended to where one fewer either way fails on all points.
 // The choice is then as minimal as on the full data wherever holding is monotone near it.
 constexpr std::size_t kSearchPoints = 100000;
-
-// Whether every point's distance |S(u, v) - D| (Euclidean, at its parameters) is within
-// `limit`. The per-axis check allows up to sqrt(3) T; the closest-point checker of the peer
-// benchmark (docs/bench_peers.md) counts a point whose distance to the surface exceeds T, so
-// the search asks this too (the closest distance is at most this one).
-bool distances_within(const Surface& s, const Rows& rows, std::span<const double> u,
-                      std::span<const double> v, double limit, int threads) {
-  std::atomic<bool> ok{true};
-  const std::size_t M = rows.size(), per = 16;
-  parallel_for((M + per - 1) / per, threads, [&](std::size_t b) {
-    std::array<double, kMaxDegree + 1> bu, bv;
-    std::vector<Point> iso(static_cast<std::size_t>(s.count_u));
-    for (std::size_t j = b * per; j < std::min(M, (b + 1) * per) && ok.load(); ++j) {
-      const int fv = eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
-      for (int i = 0; i < s.count_u; ++i) {
-        Point q = Point::Zero();
-        for (int c = 0; c <= s.degree_v; ++c) q += bv[c] * s.at(i, wrap_index(fv + c, s.count_v));
-        iso[i] = q;
-      }
-      const auto row = rows[j];
-      for (std::size_t k = 0; k < row.size(); ++k) {
-        const int fu =
-            eval_basis(s.degree_u, s.count_u, s.periodic_u, u[rows.offsets()[j] + k], bu.data());
-        Point p = Point::Zero();
-        for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[wrap_index(fu + a, s.count_u)];
-        if (!((p - row[k]).norm() <= limit)) {
-          ok.store(false);
-          return;
-        }
-      }
-    }
-  });
-  return ok.load();
-}
-
-// The frame's state for one fit: centred rows, their box, round-off, threads.
-struct Frame {
-  int threads = 1;
-  BoundingBox box, centred_box;
-  Point centre = Point::Zero();
-  double roundoff = 0;
-  Rows centred;
-  Point tolerance = Point::Zero();
-
-  Frame(const Rows& rows, const FitOptions& o) : tolerance(o.tolerance) {
-    threads = threads_for(rows, o.threads);
-    box = box_of(rows, threads);
-    centre = 0.5 * (box.min + box.max);
-    centred_box = BoundingBox{box.min - centre, box.max - centre};
-    roundoff = kRoundoffRelative * box.diagonal();
-    centred = rows;
-    parallel_for(rows.size(), threads, [&](std::size_t j) {
-      for (Point& p : centred.mutable_row(j)) p -= centre;
-    });
-  }
-  // Whether a candidate (centred) holds: every point within T, every guard passed.
-  PairVerdict judge(const Surface& s, std::span<const double> u, std::span<const double> v,
-                    DeviationCheck* out = nullptr, const Rows* sample = nullptr) const {
-    const DeviationCheck c =
-        check_deviation(s, sample ? *sample : centred, u, v, tolerance, roundoff, threads);
-    if (out) *out = c;
-    const Rows& r = sample ? *sample : centred;
-    const double limit = tolerance.minCoeff() + roundoff;
-    return {
-        c.within && distances_within(s, r, u, v, limit, threads) && !failed_guard(s, centred_box),
-        c.worst_ratio};
-  }
-};
 
 // A surface the search made: its rule, norm and where the search stopped.
 struct Candidate {

@@ -1,0 +1,40 @@
+// The surface search's frame for one fit (surface_method.cpp, docs/control-points.md): the
+// rows centred on their box, the round-off, and the verdict on a candidate surface. Private.
+#pragma once
+
+#include <span>
+
+#include "deviation.h"
+#include "pair_search.h"
+#include "sfit/rows.h"
+#include "sfit/surface.h"
+#include "sfit/surface_fit.h"
+
+namespace sfit::detail {
+
+// Minimax where least squares misses T by at most this factor (FitNorm::kAuto): the minimax
+// error at a pair is at least the least-squares one divided by sqrt(points), in practice
+// within 10-40 % of it on smooth data (docs/control-points.md measures it).
+constexpr double kLinfReach = 1.25;
+
+struct Frame {
+  int threads = 1;
+  BoundingBox box, centred_box;
+  Point centre = Point::Zero();
+  double roundoff = 0;
+  Rows centred;
+  Point tolerance = Point::Zero();
+
+  Frame(const Rows& rows, const FitOptions& o);
+
+  /// Whether a candidate (centred) holds: every point of the rows (or of `sample`, a subset
+  /// of them at the same positions) within T per axis and within min T of the surface, and
+  /// every guard (fit_frame.h) passed. The verdict's ratio is the worst |S - D| / T over the
+  /// points and axes; without `out` the pass stops once a point misses T by more than
+  /// kLinfReach (the ratio is then a value above it: all the search asks), with `out` it is
+  /// exact and `out` receives the whole check.
+  PairVerdict judge(const Surface& s, std::span<const double> u, std::span<const double> v,
+                    DeviationCheck* out = nullptr, const Rows* sample = nullptr) const;
+};
+
+}  // namespace sfit::detail
