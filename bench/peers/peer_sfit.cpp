@@ -64,15 +64,19 @@ class SfitPeer final : public Peer {
   }
   std::string notes() const override {
     const FitReport& r = result_->report;
+    // The two-stage counts are empty where that fit did not run (the surface search on large
+    // data: docs/control-points.md).
+    auto largest = [](const std::vector<int>& c) {
+      return c.empty() ? std::string("-") : std::to_string(*std::max_element(c.begin(), c.end()));
+    };
     return "own check: max per-axis deviation " + std::to_string(r.max_deviation.maxCoeff()) +
-           (r.within_tolerance ? " <= T" : " > T") + "; max row count " +
-           std::to_string(*std::max_element(r.row_counts.begin(), r.row_counts.end())) +
-           ", max column count " +
-           std::to_string(*std::max_element(r.column_counts.begin(), r.column_counts.end())) +
-           ", raised " + std::to_string(r.raised_u) + "/" + std::to_string(r.raised_v) +
-           ", tightenings " + std::to_string(r.tightenings) + ", solves " +
-           std::to_string(r.solves) + ", " + std::string(to_string(r.parametrization)) +
-           " parameters";
+           (r.within_tolerance ? " <= T" : " > T") + "; method " +
+           std::string(to_string(r.method)) + ", " + std::to_string(r.pairs_tried) +
+           " pairs tried; max row count " + largest(r.row_counts) + ", max column count " +
+           largest(r.column_counts) + ", raised " + std::to_string(r.raised_u) + "/" +
+           std::to_string(r.raised_v) + ", tightenings " + std::to_string(r.tightenings) +
+           ", solves " + std::to_string(r.solves) + ", " +
+           std::string(to_string(r.parametrization)) + " parameters";
   }
 
  private:
