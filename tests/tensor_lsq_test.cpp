@@ -1,7 +1,8 @@
 // The surface search's least-squares solver (src/core/tensor_lsq.h, kron_pcg.h): the surface
 // at a pair equals a dense least-squares reference on ragged rows, with conjugate gradients
 // and with the factorisation alone; grids evenly spaced along their rows solve separably at
-// the chord rule; the Kronecker preconditioner is exact on a Kronecker system.
+// the chord rule; weighted rows give weighted least squares; the Kronecker preconditioner is
+// exact on a Kronecker system.
 #include "tensor_lsq.h"
 
 #include <gtest/gtest.h>
@@ -41,7 +42,7 @@ Rows ragged_rows(int rows, unsigned seed) {
   return out;
 }
 
-// The least-squares control points at (u, v) from the dense design matrix (QR).
+// The (weighted) least-squares control points at (u, v) from the dense design matrix (QR).
 Eigen::MatrixX3d dense_reference(const Rows& rows, const std::vector<double>& u,
                                  const std::vector<double>& v, int nu, int nv, int p) {
   const long N = static_cast<long>(rows.total_points());
@@ -56,6 +57,11 @@ Eigen::MatrixX3d dense_reference(const Rows& rows, const std::vector<double>& u,
       for (int a = 0; a <= p; ++a)
         for (int b = 0; b <= p; ++b) A(r, (fu + a) * nv + (fv + b)) = bu[a] * bv[b];
       D.row(r) = rows[j][k].transpose();
+      if (rows.weighted()) {  // min sum w |S - D|^2: each equation scaled by sqrt(w)
+        const double sw = std::sqrt(rows.row_weights(j)[k]);
+        A.row(r) *= sw;
+        D.row(r) *= sw;
+      }
     }
   }
   return A.colPivHouseholderQr().solve(D);
@@ -87,6 +93,31 @@ TEST(TensorLsq, RaggedRowsEqualTheDenseReferenceWithAndWithoutConjugateGradients
         // The data spans 100: control points to 1e-7 of it (CG stops at 1e-11 of the residual).
         EXPECT_LT(largest_difference(s, ref), 1e-5);
       }
+    }
+  }
+}
+
+TEST(TensorLsq, WeightedRowsEqualTheDenseWeightedReference) {
+  Rows rows = ragged_rows(24, 11);
+  std::vector<double> w(rows.total_points());
+  for (std::size_t k = 0; k < w.size(); ++k) w[k] = 0.5 + static_cast<double>((k * 7) % 10);
+  rows.set_weights(w);
+  for (Parametrization rule : {Parametrization::kPaper, Parametrization::kChord}) {
+    TensorSpec spec;
+    spec.rule = rule;
+    TensorProblem prob(rows, spec);
+    for (const auto& [nu, nv] : {std::pair{20, 18}, std::pair{9, 7}}) {
+      Surface s;
+      ASSERT_TRUE(prob.solve(nu, nv, s));
+      const Eigen::MatrixX3d ref = dense_reference(rows, prob.u_at(nu), prob.v_at(nv), nu, nv, 3);
+      EXPECT_LT(largest_difference(s, ref), 1e-5) << nu << " x " << nv;
+      // And the weights change it: not the unweighted fit.
+      Rows plain = rows;
+      plain.set_weights({});
+      TensorProblem unweighted(plain, spec);
+      Surface p;
+      ASSERT_TRUE(unweighted.solve(nu, nv, p));
+      EXPECT_GT(largest_difference(p, ref), 1e-3);
     }
   }
 }

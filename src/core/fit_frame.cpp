@@ -190,6 +190,11 @@ Point relative_tolerance(const Rows& rows, double fraction) {
 
 namespace detail {
 
+bool weights_matter(const Rows& rows) {
+  const auto& w = rows.weights();
+  return std::any_of(w.begin(), w.end(), [](double x) { return x != 1.0; });
+}
+
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }

@@ -14,6 +14,9 @@ int threads_for(const Rows& rows, int requested);
 BoundingBox box_of(const Rows& rows, int threads);
 /// Seconds on the steady clock.
 double now();
+/// Whether the rows carry a weight other than 1 (unit weights fit as unweighted rows do, bit
+/// for bit: docs/seams.md).
+bool weights_matter(const Rows& rows);
 
 /// Whether a surface stays near its data between the points it was checked at: every control
 /// point within the data's box grown by its diagonal, and the surface, sampled 4 times per

@@ -517,18 +517,6 @@ FitResult SurfaceFitter::fit(const Rows& rows) {
 }
 
 FitResult SurfaceFitter::fit_given(const Rows& rows) {
-  if (o_.method == FitMethod::kSurface && rows.weighted()) {
-    // The surface search fits unweighted least squares; weighted rows take the two stages,
-    // whose curve stage weighs its equations (docs/seams.md). The report says sfit01.
-    FitOptions o = o_;
-    o.method = FitMethod::kSfit01;
-    if (o.parametrization == Parametrization::kAuto) o.parametrization = Parametrization::kPaper;
-    SurfaceFitter two_stages(o);
-    two_stages.row_seam_offsets_ = row_seam_offsets_;
-    valid_ = false;
-    rows_refitted_ = rows.size();
-    return two_stages.fit_given(rows);
-  }
   if (o_.method == FitMethod::kSurface) {
     // The surface search has no per-row state to reuse: update() refits in full.
     valid_ = false;

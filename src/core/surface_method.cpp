@@ -161,7 +161,8 @@ FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0,
       // kL2: least squares only; kLinf: minimax (least squares only where the minimax does
       // not hold, to return a surface); kAuto: minimax where this rule's least squares
       // missed T by at most kLinfReach.
-      if (norm == FitNorm::kLinf && o.norm == FitNorm::kL2) continue;
+      // Weighted rows: least squares only (weights shape a least-squares fit; docs/seams.md).
+      if (norm == FitNorm::kLinf && (o.norm == FitNorm::kL2 || weights_matter(rows))) continue;
       if (norm == FitNorm::kLinf && o.norm == FitNorm::kAuto &&
           (best_verdict.holds || !best || best_rule != rule || best_verdict.ratio > kLinfReach))
         continue;
@@ -336,7 +337,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     tried += l2.tried();
     std::optional<Candidate> found;
     if (choice.nu > 0) found = Candidate{rule, FitNorm::kL2, choice.nu, choice.nv, choice.stop};
-    if (o.norm != FitNorm::kL2) {
+    if (o.norm != FitNorm::kL2 && !weights_matter(rows)) {
       // Minimax from the least-squares choice (or the two-stage pair) downwards, at pairs
       // where least squares missed T by a little (kAuto) or at all (kLinf).
       PairOracle linf([&](int nu, int nv) {

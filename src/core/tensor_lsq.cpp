@@ -8,6 +8,7 @@
 
 #include "aligned_fit.h"
 #include "basis.h"
+#include "fit_frame.h"
 #include "kron_pcg.h"
 #include "parallel.h"
 #include "parameters.h"
@@ -126,6 +127,7 @@ TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec) : rows_(r
     positions_v_ = positions_across(rows, positions_u_, spec.rule, spec.closed_u, spec.closed_v);
     shared_u_ = shared_u_ || same_positions(rows, positions_u_);
   }
+  shared_u_ = shared_u_ && !weights_matter(rows);  // one Gram matrix needs the same weights
 }
 
 TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec,
@@ -140,7 +142,7 @@ TensorProblem::TensorProblem(const Rows& rows, const TensorSpec& spec,
   max_u_ = std::max<int>(min_u(), static_cast<int>(hi));
   max_v_ = std::max<int>(min_v(), static_cast<int>(rows.size()));
   positions_u_ = std::move(positions_u);
-  shared_u_ = same_positions(rows, positions_u_);
+  shared_u_ = same_positions(rows, positions_u_) && !weights_matter(rows);
   positions_v_ = std::move(positions_v);
 }
 
@@ -150,9 +152,11 @@ Rows subsample(const Rows& rows, std::size_t step, const std::vector<double>& po
   sub_positions.clear();
   for (std::size_t j = 0; j < rows.size(); ++j) {
     const auto row = rows[j];
+    const auto weights = rows.row_weights(j);
     for (std::size_t k = 0; k < row.size(); ++k)
       if (k % step == 0 || k + 1 == row.size()) {
         out.push_point(row[k]);
+        if (!weights.empty()) out.push_weight(weights[k]);
         if (!positions.empty()) sub_positions.push_back(positions[rows.offsets()[j] + k]);
       }
     out.end_row();
@@ -198,11 +202,17 @@ const TensorProblem::Moments& TensorProblem::moments(int nu) {
     double* G = gram_here ? &m->gram[(shared_u_ ? 0 : j) * nu * w] : nullptr;
     Point* R = &m->rhs[j * nu];
     std::array<double, kMaxDegree + 1> b;
+    // Weighted rows (docs/seams.md): each point's equation scaled by sqrt(w), so its moments
+    // by w.
+    const auto weights = rows_.row_weights(j);
     for (int k = 0; k < n; ++k) {
       const int f = eval_basis(p, nu, spec_.closed_u, t[k], b.data());
+      if (!weights.empty())
+        for (int a = 0; a < w; ++a) b[a] *= std::sqrt(weights[k]);
+      const double scale = weights.empty() ? 1.0 : std::sqrt(weights[k]);
       for (int a = 0; a < w; ++a) {
         const int i = wrap_index(f + a, nu);
-        R[i] += b[a] * row[k];
+        R[i] += (scale * b[a]) * row[k];
         if (G)
           for (int d = 0; a + d < w; ++d) G[i * w + d] += b[a] * b[a + d];
       }

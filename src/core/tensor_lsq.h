@@ -17,6 +17,8 @@
 //          lost accuracy only loses optimality: every candidate is checked against the
 //          original points (check_deviation()) and guarded between them (fit_frame.h).
 //          A span without data makes the system singular: that pair does not hold.
+//          Weighted rows (Rows::weights(), docs/seams.md) give weighted least squares,
+//          min sum w |S - D|^2: their moments are weighted, and no two rows share a Gram matrix.
 #pragma once
 
 #include <map>
@@ -89,8 +91,9 @@ class TensorProblem {
   std::size_t cache_bytes_ = 0;
 };
 
-/// Every `step`-th point of every row (and each row's last point), with the positions of the
-/// points kept (from `positions`, per point of `rows`, when not empty) into `sub_positions`.
+/// Every `step`-th point of every row (and each row's last point; their weights too), with the
+/// positions of the points kept (from `positions`, per point of `rows`, when not empty) into
+/// `sub_positions`.
 Rows subsample(const Rows& rows, std::size_t step, const std::vector<double>& positions,
                std::vector<double>& sub_positions);
 
