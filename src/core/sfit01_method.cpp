@@ -18,40 +18,19 @@ namespace sfit::detail {
 
 FitResult SurfaceFitter::finish(Attempt& at, int tightenings, const DeviationCheck& check,
                                 double seconds_start) const {
-  FitResult out;
-  out.surface = std::move(at.surface);
-  for (Point& p : out.surface.control) p += centre_;
-  out.u = std::move(at.u);
-  out.v = std::move(at.v);
+  // [seams hook] Shape measures (fold_check.h) on the centred surface and rows: the surface
+  // moved to the data's coordinates and back, as the surface returned is (the same bits).
+  const BoundingBox box{box_.min - centre_, box_.max - centre_};
+  Surface centred = at.surface;
+  for (Point& p : centred.control) p += centre_;
+  for (Point& p : centred.control) p -= centre_;
+  const ShapeMeasures m = measure_shape(centred, centred_, at.u, at.v, box, o_.closed_u);
+  FitResult out = frame_result(std::move(at.surface), std::move(at.u), std::move(at.v),
+                               std::move(at.report), check, m, centred_, centre_, roundoff_, o_);
   FitReport& r = out.report;
-  r = std::move(at.report);
-  r.points = centred_.total_points();
-  r.rows = centred_.size();
-  r.tolerance = o_.tolerance;
-  r.max_deviation = check.max_deviation;
-  r.worst_row = check.worst_row;
-  r.worst_index = check.worst_index;
-  r.worst_deviation = check.worst_deviation;
-  r.within_tolerance = check.within;
-  r.count_u = out.surface.count_u;
-  r.count_v = out.surface.count_v;
-  r.degree_u = o_.degree_u;
-  r.degree_v = o_.degree_v;
-  r.closed_u = o_.closed_u;
-  r.closed_v = o_.closed_v;
   r.parametrization = rule_;
   r.parametrization_across = across_.value_or(rule_);
   r.tightenings = tightenings;
-  r.roundoff = roundoff_;
-  {  // [seams hook] Shape measures (fold_check.h) on the centred surface and rows.
-    const BoundingBox box{box_.min - centre_, box_.max - centre_};
-    Surface centred = out.surface;
-    for (Point& p : centred.control) p -= centre_;
-    const ShapeMeasures m = measure_shape(centred, centred_, out.u, out.v, box, o_.closed_u);
-    r.fold = m.fold;
-    r.box_excursion = m.box_excursion;
-    r.row_gap = m.row_gap;
-  }
   r.seconds = now() - seconds_start;
   return out;
 }

@@ -42,6 +42,9 @@ std::vector<double> control_weights(const Rows& rows, const std::vector<Rerepres
   return w;
 }
 
+// Positions across the rows for the geometric rules (docs/method.md 7.4): each column's
+// normalized_positions(), averaged over the columns whose points do not all coincide (Piegl
+// and Tiller, The NURBS Book 9.2.5); uniform where every column's points coincide.
 template <class GetPoints>
 std::vector<double> averaged_positions(std::size_t n_curves, GetPoints&& points_of,
                                        Parametrization rule, bool periodic) {
