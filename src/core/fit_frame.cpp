@@ -227,8 +227,36 @@ bool stays_near_the_data(const Surface& s, const BoundingBox& box) {
   return true;
 }
 
-// Positions across the rows for the geometric rules: each column's normalized_positions(),
-// averaged over the columns whose points do not all coincide (Piegl and Tiller's averaging for
+FitResult frame_result(Surface s, std::vector<double> u, std::vector<double> v, FitReport report,
+                       const DeviationCheck& check, const ShapeMeasures& shape, const Rows& centred,
+                       const Point& centre, double roundoff, const FitOptions& o) {
+  FitResult out;
+  for (Point& p : s.control) p += centre;
+  out.surface = std::move(s);
+  out.u = std::move(u);
+  out.v = std::move(v);
+  FitReport& r = out.report;
+  r = std::move(report);
+  r.points = centred.total_points();
+  r.rows = centred.size();
+  r.tolerance = o.tolerance;
+  r.max_deviation = check.max_deviation;
+  r.worst_row = check.worst_row;
+  r.worst_index = check.worst_index;
+  r.worst_deviation = check.worst_deviation;
+  r.within_tolerance = check.within;
+  r.count_u = out.surface.count_u;
+  r.count_v = out.surface.count_v;
+  r.degree_u = o.degree_u;
+  r.degree_v = o.degree_v;
+  r.closed_u = o.closed_u;
+  r.closed_v = o.closed_v;
+  r.roundoff = roundoff;
+  r.fold = shape.fold;
+  r.box_excursion = shape.box_excursion;
+  r.row_gap = shape.row_gap;
+  return out;
+}
 
 namespace {
 // The guards, in the order they run. Add a check here and every method runs it.

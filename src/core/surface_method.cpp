@@ -93,33 +93,11 @@ std::optional<Surface> solve_pair(TensorProblem& prob, FitNorm norm, int nu, int
 
 FitResult assemble(const Frame& fr, Surface s, std::vector<double> u, std::vector<double> v,
                    const DeviationCheck& c, const FitOptions& o) {
-  FitResult out;
   // Shape measures (fold_check.h, docs/seams.md) on the centred surface and rows.
   const ShapeMeasures m = measure_shape(s, fr.centred, u, v, fr.centred_box, o.closed_u);
-  out.report.fold = m.fold;
-  out.report.box_excursion = m.box_excursion;
-  out.report.row_gap = m.row_gap;
-  for (Point& p : s.control) p += fr.centre;
-  out.surface = std::move(s);
-  out.u = std::move(u);
-  out.v = std::move(v);
-  FitReport& r = out.report;
-  r.points = fr.centred.total_points();
-  r.rows = fr.centred.size();
-  r.tolerance = o.tolerance;
-  r.max_deviation = c.max_deviation;
-  r.worst_row = c.worst_row;
-  r.worst_index = c.worst_index;
-  r.worst_deviation = c.worst_deviation;
-  r.within_tolerance = c.within;
-  r.count_u = out.surface.count_u;
-  r.count_v = out.surface.count_v;
-  r.degree_u = o.degree_u;
-  r.degree_v = o.degree_v;
-  r.closed_u = o.closed_u;
-  r.closed_v = o.closed_v;
-  r.roundoff = fr.roundoff;
-  r.method = FitMethod::kSurface;
+  FitResult out = frame_result(std::move(s), std::move(u), std::move(v), FitReport{}, c, m,
+                               fr.centred, fr.centre, fr.roundoff, o);
+  out.report.method = FitMethod::kSurface;
   return out;
 }
 

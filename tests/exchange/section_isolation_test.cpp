@@ -5,19 +5,6 @@
 // translate is refused by name; lengths are read in the file's own unit; closed curves are
 // fitted closed.
 #include <gtest/gtest.h>
-#include <BRepBuilderAPI_MakeEdge.hxx>
-#include <BRep_Builder.hxx>
-#include <GeomAPI_Interpolate.hxx>
-#include <Geom_BSplineCurve.hxx>
-#include <Geom_TrimmedCurve.hxx>
-#include <IGESControl_Controller.hxx>
-#include <IGESControl_Writer.hxx>
-#include <Interface_Static.hxx>
-#include <STEPControl_Controller.hxx>
-#include <STEPControl_Writer.hxx>
-#include <TColgp_HArray1OfPnt.hxx>
-#include <TopoDS_Compound.hxx>
-#include <TopoDS_Edge.hxx>
 
 #include <cmath>
 #include <filesystem>
@@ -25,6 +12,7 @@
 #include <random>
 #include <regex>
 
+#include "section_files.h"
 #include "sfit/error.h"
 #include "sfit/exchange/readers.h"
 #include "test_support.h"
@@ -34,48 +22,14 @@ namespace fs = std::filesystem;
 namespace sfit::exchange {
 namespace {
 
-// Three section curves: open ones across x, or closed circles; `scale` in the session's mm.
-std::vector<Handle(Geom_Curve)> sections(double scale, bool closed, bool trimmed) {
-  std::vector<Handle(Geom_Curve)> out;
-  for (int j = 0; j < 3; ++j) {
-    const int n = 6;
-    Handle(TColgp_HArray1OfPnt) pts = new TColgp_HArray1OfPnt(1, n);
-    for (int k = 0; k < n; ++k) {
-      const double t = closed ? 2 * M_PI * k / n : k / (n - 1.0);
-      pts->SetValue(k + 1, closed
-                               ? gp_Pnt(scale * std::cos(t), scale * std::sin(t), scale * j)
-                               : gp_Pnt(scale * t, scale * j, scale * 0.2 * std::sin(3 * t + j)));
-    }
-    GeomAPI_Interpolate in(pts, closed, 1e-9);
-    in.Perform();
-    Handle(Geom_Curve) c = Handle(Geom_BSplineCurve)(in.Curve());
-    if (trimmed) c = new Geom_TrimmedCurve(c, c->FirstParameter() + 0.1, c->LastParameter() - 0.1);
-    out.push_back(c);
-  }
-  return out;
-}
-
 void write_step(const std::string& path, const std::vector<Handle(Geom_Curve)>& curves,
                 const char* unit = "MM") {
-  STEPControl_Controller::Init();
-  Interface_Static::SetCVal("write.step.unit", unit);
-  BRep_Builder b;
-  TopoDS_Compound c;
-  b.MakeCompound(c);
-  for (const auto& k : curves) b.Add(c, BRepBuilderAPI_MakeEdge(k).Edge());
-  STEPControl_Writer w;
-  ASSERT_EQ(w.Transfer(c, STEPControl_AsIs), IFSelect_RetDone);
-  ASSERT_EQ(w.Write(path.c_str()), IFSelect_RetDone);
-  Interface_Static::SetCVal("write.step.unit", "MM");
+  ASSERT_TRUE(test::write_section_step(path, test::section_edges(curves), unit)) << path;
 }
 
 void write_iges(const std::string& path, const std::vector<Handle(Geom_Curve)>& curves,
                 const char* unit = "MM") {
-  IGESControl_Controller::Init();
-  IGESControl_Writer w(unit, 0);
-  for (const auto& k : curves) ASSERT_TRUE(w.AddGeom(k));
-  w.ComputeModel();
-  ASSERT_TRUE(w.Write(path.c_str()));
+  ASSERT_TRUE(test::write_section_iges(path, curves, unit)) << path;
 }
 
 std::string q(const std::string& s) {
@@ -120,8 +74,8 @@ int fit_expecting_a_clean_answer(const std::string& file, std::string* error = n
 
 TEST(SectionMutations, OneTokenEditsAreCleanErrors) {
   const std::string dir = test::temp_dir();
-  write_step(dir + "/good.step", sections(1, false, true));
-  write_iges(dir + "/good.igs", sections(1, false, false));
+  write_step(dir + "/good.step", test::section_curves(1, false, true));
+  write_iges(dir + "/good.igs", test::section_curves(1, false, false));
   const std::string step = test::read_file(dir + "/good.step");
   const std::string iges = test::read_file(dir + "/good.igs");
   // The first B-spline curve's control points: #A,#B,...; a DIRECTION's label.
@@ -158,7 +112,7 @@ TEST(SectionMutations, OneTokenEditsAreCleanErrors) {
 
 TEST(SectionMutations, ACurveThatDoesNotTranslateIsRefusedByName) {
   const std::string dir = test::temp_dir();
-  write_step(dir + "/good.step", sections(1, false, true));
+  write_step(dir + "/good.step", test::section_curves(1, false, true));
   std::string step = test::read_file(dir + "/good.step");
   std::smatch m;
   ASSERT_TRUE(
@@ -177,8 +131,8 @@ TEST(SectionMutations, ACurveThatDoesNotTranslateIsRefusedByName) {
 
 TEST(SectionMutations, RandomByteEditsNeverCrashSfit) {
   const std::string dir = test::temp_dir();
-  write_step(dir + "/good.step", sections(1, false, false));
-  write_iges(dir + "/good.igs", sections(1, true, false));
+  write_step(dir + "/good.step", test::section_curves(1, false, false));
+  write_iges(dir + "/good.igs", test::section_curves(1, true, false));
   std::mt19937 rng(20261201);
   const std::string alphabet = "0123456789#,.()=-;EDP \n";
   for (const char* ext : {"step", "igs"}) {
@@ -203,9 +157,9 @@ TEST(SectionMutations, RandomByteEditsNeverCrashSfit) {
 TEST(SectionUnits, LengthsAreReadInTheFilesOwnUnit) {
   const std::string dir = test::temp_dir();
   // Curves 12 000 mm long, 12 000 mm apart in the session, written as 12 m.
-  write_step(dir + "/metre.step", sections(12000, false, false), "M");
-  write_iges(dir + "/metre.igs", sections(12000, false, false), "M");
-  write_step(dir + "/mm.step", sections(12000, false, false), "MM");
+  write_step(dir + "/metre.step", test::section_curves(12000, false, false), "M");
+  write_iges(dir + "/metre.igs", test::section_curves(12000, false, false), "M");
+  write_step(dir + "/mm.step", test::section_curves(12000, false, false), "MM");
   for (const std::string f : {"metre.step", "metre.igs", "mm.step"}) {
     SCOPED_TRACE(f);
     const SectionsFile s = read_sections(dir + "/" + f);
@@ -229,7 +183,7 @@ TEST(SectionUnits, LengthsAreReadInTheFilesOwnUnit) {
 
 TEST(SectionClosed, ClosedCurvesAreFittedClosedUnlessToldOtherwise) {
   const std::string dir = test::temp_dir();
-  write_iges(dir + "/rings.igs", sections(1, true, false));
+  write_iges(dir + "/rings.igs", test::section_curves(1, true, false));
   const SectionsFile s = read_sections(dir + "/rings.igs");
   ASSERT_EQ(s.closed.size(), 3u);
   for (bool c : s.closed) EXPECT_TRUE(c);
