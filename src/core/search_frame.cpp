@@ -5,11 +5,14 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "basis.h"
 #include "fit_frame.h"
+#include "minimax.h"
 #include "parallel.h"
+#include "sfit/fold_check.h"
 
 namespace sfit::detail {
 
@@ -103,6 +106,46 @@ PairVerdict Frame::judge(const Surface& s, std::span<const double> u, std::span<
                    out ? std::numeric_limits<double>::infinity() : kLinfReach, threads);
   if (out) *out = check_deviation(s, r, u, v, tolerance, roundoff, threads);
   return {p.within && p.near && !failed_guard(s, centred_box), p.ratio};
+}
+
+std::vector<Parametrization> rules_of(Parametrization p) {
+  if (p == Parametrization::kAuto || p == Parametrization::kFewest)
+    return {Parametrization::kUniform, Parametrization::kChord, Parametrization::kCentripetal,
+            Parametrization::kPaper};
+  return {p};
+}
+
+TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads,
+                   std::span<const double> seam_offsets) {
+  return TensorSpec{o.degree_u,
+                    o.degree_v,
+                    o.closed_u,
+                    o.closed_v,
+                    rule,
+                    threads,
+                    std::vector<double>(seam_offsets.begin(), seam_offsets.end())};
+}
+
+// The surface at one pair by one norm (centred), or nullopt where none was made.
+std::optional<Surface> solve_pair(TensorProblem& prob, FitNorm norm, int nu, int nv,
+                                  const Point& tolerance) {
+  Surface s;
+  if (!prob.solve(nu, nv, s)) return std::nullopt;
+  if (norm == FitNorm::kLinf) {
+    if (!minimax_refine(prob.rows(), prob.u_at(nu), prob.v_at(nv), tolerance, s))
+      return std::nullopt;
+  }
+  return s;
+}
+
+FitResult assemble(const Frame& fr, Surface s, std::vector<double> u, std::vector<double> v,
+                   const DeviationCheck& c, const FitOptions& o) {
+  // Shape measures (fold_check.h, docs/seams.md) on the centred surface and rows.
+  const ShapeMeasures m = measure_shape(s, fr.centred, u, v, fr.centred_box, o.closed_u);
+  FitResult out = frame_result(std::move(s), std::move(u), std::move(v), FitReport{}, c, m,
+                               fr.centred, fr.centre, fr.roundoff, o);
+  out.report.method = FitMethod::kSurface;
+  return out;
 }
 
 }  // namespace sfit::detail

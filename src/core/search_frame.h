@@ -2,13 +2,16 @@
 // rows centred on their box, the round-off, and the verdict on a candidate surface. Private.
 #pragma once
 
+#include <optional>
 #include <span>
+#include <vector>
 
 #include "deviation.h"
 #include "pair_search.h"
 #include "sfit/rows.h"
 #include "sfit/surface.h"
 #include "sfit/surface_fit.h"
+#include "tensor_lsq.h"
 
 namespace sfit::detail {
 
@@ -36,5 +39,23 @@ struct Frame {
   PairVerdict judge(const Surface& s, std::span<const double> u, std::span<const double> v,
                     DeviationCheck* out = nullptr, const Rows* sample = nullptr) const;
 };
+
+/// The parameter rules the search tries for FitOptions::parametrization (all four for kAuto
+/// and kFewest, in the order uniform, chord, centripetal, paper).
+std::vector<Parametrization> rules_of(Parametrization p);
+/// The solver's spec for a fit's options at one rule.
+TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads,
+                   std::span<const double> seam_offsets);
+/// The surface at one pair by one norm (centred), or nullopt where none was made.
+std::optional<Surface> solve_pair(TensorProblem& prob, FitNorm norm, int nu, int nv,
+                                  const Point& tolerance);
+/// The result of a surface (centred) with its check, in the frame's coordinates and report
+/// (frame_result() of fit_frame.h) and the shape measures; method kSurface.
+FitResult assemble(const Frame& fr, Surface s, std::vector<double> u, std::vector<double> v,
+                   const DeviationCheck& c, const FitOptions& o);
+
+/// FitOptions::counts: the surface at exactly that pair (fixed_counts.cpp).
+FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0,
+                        std::span<const double> seam_offsets);
 
 }  // namespace sfit::detail
