@@ -33,7 +33,7 @@ std::size_t fit_curves(std::size_t n_curves, const PointsOf& points_of,
         CurveFitOptions co = base;
         co.hint = have_hints ? hints[i] : previous;
         co.positions = positions_of(i);
-        if (weights_of) co.weights = weights_of(i);  // [seams] weighted least squares
+        if (weights_of) co.weights = weights_of(i);  // weighted least squares
         fits[i] = fit_curve(points_of(i), co);
         ++fitted[b];
       }

@@ -116,7 +116,7 @@ void validate(const Rows& rows, const FitOptions& o) {
                     Place{.row = jl, .point = static_cast<long>(k)},
                     {row[k].x(), row[k].y(), row[k].z()});
   }
-  // [seams] Weights (docs/seams.md): one finite weight > 0 per point, or none.
+  // Weights (docs/seams.md): one finite weight > 0 per point, or none.
   if (rows.weighted()) {
     if (rows.weights().size() != rows.total_points())
       throw Error(ErrorCode::kInputData,

@@ -40,7 +40,7 @@ std::size_t IncrementalFit::rows_refitted() const {
 }
 
 const FitResult& IncrementalFit::apply(Rows edited, std::size_t row) {
-  // [seams] Edits do not carry per-point weights yet: refuse rather than drop them.
+  // Edits do not carry per-point weights yet: refuse rather than drop them.
   if (rows_.weighted())
     throw Error(ErrorCode::kUsage, "edits of weighted rows are not supported yet",
                 Place{.option = "weights"});

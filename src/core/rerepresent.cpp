@@ -32,7 +32,7 @@ struct Geometry {
     const Curve& old = fit.curve;
     const int w = degree + 1, wo = old.degree + 1;
     const ReparameterMap map(old.degree, old.count(), degree, count, periodic, fit.scaled);
-    // [seams] Arc-length samples (open curves): the data map piecewise linearly from them.
+    // Arc-length samples (open curves): the data map piecewise linearly from them.
     const std::vector<double>& tau = samples ? *samples : map.samples();
     const auto& g = map.targets();
     auto image = [&](double t) {

@@ -43,7 +43,7 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
 
   // Positions of the points along their rows (none for the paper's rule): docs/method.md 7.4.
   const bool geometric = rule_ != Parametrization::kPaper;
-  // [seams hook] Fractional seams (RowSeam::offset): positions measured from each row's seam
+  // Fractional seams (RowSeam::offset): positions measured from each row's seam
   // (the paper's rule then uses uniform positions, its own to rounding).
   const bool seam_positions = !row_seam_offsets_.empty();
   const bool row_geometric = geometric || seam_positions;
@@ -70,7 +70,7 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   row_options.shared_positions = rule_ == Parametrization::kUniform;
   std::vector<CurveFit> fits;
   if (changed) fits = row_fits_;
-  // [seams hook] Weighted rows: weighted least squares in the curve stage.
+  // Weighted rows: weighted least squares in the curve stage.
   const WeightsOf row_weights_of =
       rows.weighted() ? WeightsOf([&](std::size_t j) { return rows.row_weights(j); }) : WeightsOf();
   rows_refitted_ = fit_curves(M, row_points, row_positions_of, row_options, o_.row_count_hints,
@@ -93,7 +93,7 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   const int nu = rs.common;
 
   // Transverse stage: column i holds control point i of every row curve (docs/method.md 5).
-  // [seams hook] The fold guard may set its own rule across the rows (across_).
+  // The fold guard may set its own rule across the rows (across_).
   Columns columns = fit_columns(rows, rs.curves, nu, across_.value_or(rule_), o_, bound, threads_);
   const std::vector<CurveFit>& column_fits = columns.fits;
   const Represented& cs = columns.represented;

@@ -18,7 +18,7 @@ namespace sfit::detail {
 
 FitResult SurfaceFitter::finish(Attempt& at, int tightenings, const DeviationCheck& check,
                                 double seconds_start) const {
-  // [seams hook] Shape measures (fold_check.h) on the centred surface and rows: the surface
+  // Shape measures (fold_check.h) on the centred surface and rows: the surface
   // moved to the data's coordinates and back, as the surface returned is (the same bits).
   const BoundingBox box{box_.min - centre_, box_.max - centre_};
   Surface centred = at.surface;
@@ -42,7 +42,7 @@ long size_of(const FitResult& f) {
 }  // namespace
 
 FitResult SurfaceFitter::fit(const Rows& rows) {
-  // [seams hook] Seam alignment and orientation (seam_alignment.h, docs/seams.md), for every
+  // Seam alignment and orientation (seam_alignment.h, docs/seams.md), for every
   // method: the fit runs on the re-ordered rows; u, the worst point and the report refer to
   // the original points. update() refits in full after an aligned fit (valid_ cleared).
   if (o_.seam != SeamMode::kKeep || o_.orient != OrientMode::kKeep) {
@@ -82,7 +82,7 @@ FitResult SurfaceFitter::fit_given(const Rows& rows) {
     const auto size = [](const FitResult& f) {
       return static_cast<long>(f.surface.count_u) * f.surface.count_v;
     };
-    // [seams] Within tolerance first, then fold-free, then the fewest control points.
+    // Within tolerance first, then fold-free, then the fewest control points.
     const auto rank = [&](const FitResult& f) {
       return 2 * !f.report.within_tolerance + (o_.fold_guard && folds(f));
     };
@@ -95,7 +95,7 @@ FitResult SurfaceFitter::fit_given(const Rows& rows) {
 }
 
 FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
-  // [seams hook] The fold guard (fold_check.h, docs/seams.md): a surface that doubles back on
+  // The fold guard (fold_check.h, docs/seams.md): a surface that doubles back on
   // itself between rows is refitted with chord-length, then centripetal, positions across the
   // rows (uneven row spacing at the paper's even v is what folds it); the fold-free one with
   // the fewest control points wins. Where none is fold-free, the least folded stays and its
@@ -196,7 +196,7 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   if (!valid_ || rows.size() != centred_.size() || box.min != box_.min || box.max != box_.max ||
       rule_ != o_.parametrization)  // (never equal for kFewest: full refits)
     return fit(rows);
-  // [seams hook] Rows that need re-ordering: a full fit (fit() aligns them).
+  // Rows that need re-ordering: a full fit (fit() aligns them).
   if (!alignment_for(rows, o_).identity()) return fit(rows);
   // Same box, so the same centre, round-off allowance and budget: refresh the edited rows.
   std::vector<char> mark(rows.size(), 0);
@@ -217,7 +217,7 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
   FitResult out = finish(at, 0, check, t0);
   if (rule_ != Parametrization::kPaper && failed_guard(out.surface, box_))
     return fit(rows);  // fit() falls back to the paper's rule: do exactly that
-  if (o_.fold_guard && folds(out)) return fit(rows);  // [seams hook] fit() guards the fold
+  if (o_.fold_guard && folds(out)) return fit(rows);  // fit() guards the fold
   valid_ = true;
   return out;
 }

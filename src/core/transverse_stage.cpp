@@ -11,7 +11,7 @@ namespace sfit::detail {
 
 namespace {
 
-// [seams] The weights of the columns' points (control point i of row j at [i * M + j]): the
+// The weights of the columns' points (control point i of row j at [i * M + j]): the
 // mean weight of row j's points that control point i influences, each counted by its basis
 // value at the point's parameter; the row's mean weight where it influences none. Empty for
 // unweighted rows.
@@ -89,7 +89,7 @@ Columns fit_columns(const Rows& rows, const std::vector<Rerepresentation>& row_c
           ? averaged_positions(static_cast<std::size_t>(nu), column_points, across, o.closed_v)
           : std::vector<double>();
   auto column_positions_of = [&](std::size_t) { return std::span<const double>(column_positions); };
-  // [seams hook] Weights across (docs/seams.md): control point i of row j weighs the mean
+  // Weights across (docs/seams.md): control point i of row j weighs the mean
   // weight of the row's points it influences, each counted by its basis value there.
   const std::vector<double> column_weights = control_weights(rows, row_curves, nu, threads);
   const WeightsOf column_weights_of =

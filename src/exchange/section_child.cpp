@@ -62,24 +62,10 @@ const Unit* step_unit(std::string name) {
 
 // The unit of an IGES file from its global section's unit flag.
 const Unit* iges_unit(int flag) {
-  switch (flag) {
-    case 1:
-      return unit_named("in");
-    case 2:
-      return unit_named("mm");
-    case 4:
-      return unit_named("ft");
-    case 5:
-      return unit_named("mi");
-    case 6:
-      return unit_named("m");
-    case 7:
-      return unit_named("km");
-    case 9:
-      return unit_named("um");
-    case 10:
-      return unit_named("cm");
-  }
+  static const std::pair<int, const char*> flags[] = {{1, "in"}, {2, "mm"}, {4, "ft"}, {5, "mi"},
+                                                      {6, "m"},  {7, "km"}, {9, "um"}, {10, "cm"}};
+  for (const auto& [iges, ours] : flags)
+    if (flag == iges) return unit_named(ours);
   return nullptr;
 }
 
@@ -139,6 +125,16 @@ double curves_diagonal(const TopoDS_Shape& shape, const std::string& path) {
                 Place{.file = path}, {largest});
   }
   return (hi - lo).norm();
+}
+
+// A file whose shape gave no section curves: says what it holds instead.
+[[noreturn]] void fail_no_sections(const TopoDS_Shape& shape, const std::string& path) {
+  long faces = 0;
+  for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) ++faces;
+  fail(ErrorCode::kInputData, path,
+       "no section curves: the file holds " +
+           (faces ? std::to_string(faces) + " face(s) and no free curves or wires"
+                  : std::string("no curves")));
 }
 
 // Every curve of a geometric curve set (STEP) must have become a shape.
@@ -247,14 +243,7 @@ SectionsFile read_sections_here(const std::string& path) {
     if (!(diagonal > 0) || !std::isfinite(diagonal)) {
       bool any_edge = false;
       for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More() && !any_edge; e.Next()) any_edge = true;
-      if (!any_edge) {
-        long faces = 0;
-        for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) ++faces;
-        fail(ErrorCode::kInputData, path,
-             "no section curves: the file holds " +
-                 (faces ? std::to_string(faces) + " face(s) and no free curves or wires"
-                        : std::string("no curves")));
-      }
+      if (!any_edge) fail_no_sections(shape, path);
       fail(ErrorCode::kInputData, path,
            std::isfinite(diagonal) ? "the curves span no length: every one is a single point"
                                    : "the curves reach infinity");
@@ -285,14 +274,7 @@ SectionsFile read_sections_here(const std::string& path) {
       sample_edge(TopoDS::Edge(e.Current()), deflection, same, pts);
       add_row(pts);
     }
-    if (out.rows.empty()) {
-      long faces = 0;
-      for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) ++faces;
-      fail(ErrorCode::kInputData, path,
-           "no section curves: the file holds " +
-               (faces ? std::to_string(faces) + " face(s) and no free curves or wires"
-                      : std::string("no curves")));
-    }
+    if (out.rows.empty()) fail_no_sections(shape, path);
   } catch (const Standard_Failure& f) {
     fail(ErrorCode::kInputSyntax, path,
          "OpenCASCADE failed reading the file (" + describe(f) + ")");

@@ -118,6 +118,29 @@ bool decode(const std::string& b, const std::string& path, SectionsFile& out) {
   return c.ok && c.at == b.size();
 }
 
+// Reads `fd` to its end onto `b`, waiting for it at most `timeout_seconds`; false where the
+// time ran out first.
+bool read_all(int fd, double timeout_seconds, std::string& b) {
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
+  char buf[1 << 16];
+  while (true) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                          deadline - std::chrono::steady_clock::now())
+                          .count();
+    if (left <= 0) return false;
+    pollfd p{fd, POLLIN, 0};
+    const int r = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) continue;
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return true;
+    b.append(buf, static_cast<std::size_t>(n));
+  }
+}
+
+// Writes all of `b` to `fd` (as much as the reader takes: it may be gone).
 void write_all(int fd, const std::string& b) {
   std::size_t done = 0;
   while (done < b.size()) {
@@ -212,27 +235,7 @@ SectionsFile read_sections(const std::string& path, const SectionReadOptions& op
     }
     ::close(fds[1]);
     std::string answer;
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::duration<double>(options.timeout_seconds);
-    bool timed_out = false;
-    char buf[1 << 16];
-    while (true) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                            deadline - std::chrono::steady_clock::now())
-                            .count();
-      if (left <= 0) {
-        timed_out = true;
-        break;
-      }
-      pollfd p{fds[0], POLLIN, 0};
-      const int r = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
-      if (r < 0 && errno == EINTR) continue;
-      if (r <= 0) continue;
-      const ssize_t n = ::read(fds[0], buf, sizeof buf);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) break;
-      answer.append(buf, static_cast<std::size_t>(n));
-    }
+    const bool timed_out = !read_all(fds[0], options.timeout_seconds, answer);
     ::close(fds[0]);
     if (timed_out) ::kill(pid, SIGKILL);
     int status = 0;

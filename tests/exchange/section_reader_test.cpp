@@ -1,23 +1,14 @@
 // Section curves from STEP and IGES files of B-spline curves (the lofting workflow): read as
 // rows, fitted to a surface within T.
 #include <gtest/gtest.h>
-#include <BRepBuilderAPI_MakeEdge.hxx>
-#include <BRep_Builder.hxx>
 #include <GeomAPI_Interpolate.hxx>
 #include <GeomAPI_ProjectPointOnCurve.hxx>
 #include <Geom_BSplineCurve.hxx>
-#include <IGESControl_Controller.hxx>
-#include <IGESControl_Writer.hxx>
-#include <Interface_Static.hxx>
-#include <STEPControl_Controller.hxx>
-#include <STEPControl_Writer.hxx>
 #include <TColgp_HArray1OfPnt.hxx>
-#include <TopoDS_Compound.hxx>
-#include <TopoDS_Edge.hxx>
-#include <TopoDS_Shape.hxx>
 
 #include <filesystem>
 
+#include "section_files.h"
 #include "sfit/error.h"
 #include "sfit/exchange/cad_writers.h"
 #include "sfit/exchange/readers.h"
@@ -28,8 +19,8 @@ namespace sfit::exchange {
 namespace {
 
 // One B-spline curve through each row: periodic for closed rows (GeomAPI_Interpolate).
-std::vector<Handle(Geom_BSplineCurve)> curves_through(const Rows& rows, bool closed) {
-  std::vector<Handle(Geom_BSplineCurve)> out;
+std::vector<Handle(Geom_Curve)> curves_through(const Rows& rows, bool closed) {
+  std::vector<Handle(Geom_Curve)> out;
   for (std::size_t j = 0; j < rows.size(); ++j) {
     const auto row = rows[j];
     Handle(TColgp_HArray1OfPnt) pts = new TColgp_HArray1OfPnt(1, static_cast<int>(row.size()));
@@ -43,29 +34,12 @@ std::vector<Handle(Geom_BSplineCurve)> curves_through(const Rows& rows, bool clo
   return out;
 }
 
-TopoDS_Compound as_edges(const std::vector<Handle(Geom_BSplineCurve)>& curves) {
-  BRep_Builder b;
-  TopoDS_Compound c;
-  b.MakeCompound(c);
-  for (const auto& k : curves) b.Add(c, BRepBuilderAPI_MakeEdge(k).Edge());
-  return c;
+void write_step_curves(const std::string& path, const std::vector<Handle(Geom_Curve)>& curves) {
+  ASSERT_TRUE(test::write_section_step(path, test::section_edges(curves))) << path;
 }
 
-void write_step_curves(const std::string& path,
-                       const std::vector<Handle(Geom_BSplineCurve)>& curves) {
-  STEPControl_Controller::Init();
-  STEPControl_Writer w;
-  ASSERT_EQ(w.Transfer(as_edges(curves), STEPControl_AsIs), IFSelect_RetDone);
-  ASSERT_EQ(w.Write(path.c_str()), IFSelect_RetDone);
-}
-
-void write_iges_curves(const std::string& path,
-                       const std::vector<Handle(Geom_BSplineCurve)>& curves) {
-  IGESControl_Controller::Init();
-  IGESControl_Writer w("MM", 0);
-  for (const auto& k : curves) ASSERT_TRUE(w.AddGeom(k));
-  w.ComputeModel();
-  ASSERT_TRUE(w.Write(path.c_str()));
+void write_iges_curves(const std::string& path, const std::vector<Handle(Geom_Curve)>& curves) {
+  ASSERT_TRUE(test::write_section_iges(path, curves)) << path;
 }
 
 struct Case {

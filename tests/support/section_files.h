@@ -1,6 +1,6 @@
 // Small STEP and IGES files of section curves (open and closed B-spline curves, trimmed ones,
 // in mm or m), written through OpenCASCADE: the section reader's tests
-// (tests/exchange/section_isolation_test.cpp) and the fuzz seed corpus
+// (tests/exchange/section_isolation_test.cpp, section_reader_test.cpp) and the fuzz seed corpus
 // (fuzz/make_section_seeds.cpp) build the same files from here. Needs OpenCASCADE's
 // TKGeomAlgo, TKTopAlgo, TKSTEP and TKIGES.
 #pragma once
