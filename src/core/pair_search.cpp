@@ -45,11 +45,19 @@ PairChoice search_pairs(const PairRange& r, long bound, PairOracle& holds) {
   };
   std::map<int, Step> f;
   // The smallest nu at nv below min(cap, (best - 1) / nv), or nothing.
+  // A lower bound on the smallest nu at nv: the exact f of the nearest larger nv searched (f
+  // is non-increasing), else min_u.
+  auto lower_at = [&](int nv) {
+    for (auto it = f.upper_bound(nv); it != f.end(); ++it)
+      if (it->second.exact) return std::max(r.min_u, it->second.f);
+    return r.min_u;
+  };
   auto column = [&](int nv, int cap) {
-    if (static_cast<long>(r.min_u) * nv >= best_size) return;
+    const int lo = lower_at(nv);
+    if (static_cast<long>(lo) * nv >= best_size) return;
     int hi =
         static_cast<int>(std::min<long>({static_cast<long>(cap), r.max_u, (best_size - 1) / nv}));
-    if (hi < r.min_u) return;
+    if (hi < lo) return;  // fewer than lo fail (monotone), more than hi are not below best
     if (r.affordable && !r.affordable(hi, nv)) {
       // The largest affordable nu: a smaller cap on the column, not a verdict on it.
       if (!r.affordable(r.min_u, nv)) return;
