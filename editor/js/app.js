@@ -3,12 +3,13 @@
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 import * as api from "./api.js";
-import { sampleCounts, tessellate } from "./bspline.js";
+import { sampleCounts, Tessellator } from "./bspline.js";
 import { curvatureColour, deviationColour } from "./colours.js";
 
 const $ = (id) => document.getElementById(id);
-// For tests and benchmarks: the last state, frames drawn, move-to-frame latencies.
-const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], ready: false });
+// For tests and benchmarks: the last state, frames drawn, move-to-frame latencies, the
+// times of the drag's mouse events; noBackdrop = true draws every frame of a drag whole.
+const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], moves: [], ready: false });
 
 // ---- the view ----------------------------------------------------------------------------
 const view = $("view");
@@ -25,7 +26,9 @@ const renderer = new THREE.WebGLRenderer({ antialias: !hook.softwareGL, preserve
 renderer.setPixelRatio(window.devicePixelRatio || 1);
 view.appendChild(renderer.domElement);
 const scene = new THREE.Scene();
-scene.background = new THREE.Color(0x1d2024);
+// The clear colour, not scene.background (with which three.js clears on every render): the
+// drag's backdrop (below) is drawn first and the rest over it without a clear.
+renderer.setClearColor(0x1d2024, 1);
 const camera = new THREE.PerspectiveCamera(40, 1, 0.001, 1000);
 const controls = new OrbitControls(camera, renderer.domElement);
 scene.add(new THREE.HemisphereLight(0xffffff, 0x404050, 1.6));
@@ -45,6 +48,7 @@ function coarseImage(on) {
   resize();
 }
 function resize() {
+  backdrop.invalidate();
   const w = view.clientWidth, h = view.clientHeight;
   renderer.setSize(w, h);
   camera.aspect = w / Math.max(1, h);
@@ -52,19 +56,123 @@ function resize() {
   needsRender = true;
 }
 window.addEventListener("resize", resize);
-function loop() {
-  if (needsRender) {
-    needsRender = false;
-    sun.position.copy(camera.position);
-    const t0 = performance.now();
-    renderer.render(scene, camera);
-    hook.renderMs = performance.now() - t0;
-    hook.frames++;
-    const now = performance.now();
-    for (const f of frameWaiters) f(now);
-    frameWaiters = [];
+// Calls `done(time)` once the GPU (the software rasteriser on SwiftShader) has finished the
+// commands issued so far, i.e. the frame is drawn, not merely submitted: a WebGL2 fence,
+// polled from the event loop (WebGL updates a fence's status only between tasks).
+const gl = renderer.getContext();
+function whenDrawn(done) {
+  if (typeof WebGL2RenderingContext === "undefined" || !(gl instanceof WebGL2RenderingContext)) {
+    done(performance.now());
+    return;
   }
+  const sync = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+  gl.flush();
+  const poll = () => {
+    if (gl.getSyncParameter(sync, gl.SYNC_STATUS) !== gl.SIGNALED) return void setTimeout(poll, 1);
+    gl.deleteSync(sync);
+    done(performance.now());
+  };
+  setTimeout(poll, 0);
+}
+// While a point is dragged the camera stands still and only the surface, the dragged row and
+// the markers change: the other rows' points and lines (10^4 points are most of a frame's
+// work on a software rasteriser) are drawn once, at the start of the drag, into a texture
+// with its depth; each frame of the drag copies it back, depth included (so the surface
+// still hides what lies behind it), and draws only what changes over it.
+const backdrop = {
+  rt: null, row: -1,
+  scene: new THREE.Scene(),
+  camera: new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1),
+  quad: null,
+  valid(row) { return this.rt !== null && this.row === row; },
+  invalidate() { this.row = -1; },
+};
+backdrop.quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.ShaderMaterial({
+  uniforms: { tColour: { value: null }, tDepth: { value: null } },
+  vertexShader: `varying vec2 vUv; void main() { vUv = uv; gl_Position = vec4(position.xy, 0.0, 1.0); }`,
+  fragmentShader: `uniform sampler2D tColour; uniform sampler2D tDepth; varying vec2 vUv;
+    void main() { gl_FragColor = texture2D(tColour, vUv); gl_FragDepth = texture2D(tDepth, vUv).x;
+      #include <colorspace_fragment>
+    }`,
+  depthTest: true, depthWrite: true, depthFunc: THREE.AlwaysDepth,
+}));
+backdrop.quad.frustumCulled = false;
+backdrop.scene.add(backdrop.quad);
+// The drawn range of the points and the row lines: all (row < 0), all but `row` (part 0:
+// before it, 1: after it), or only `row` (live).
+function pointRange(row, part) {
+  const n = pointsObj.geometry.attributes.position.count, m = rowLines.geometry.attributes.position.count;
+  if (row < 0) { pointsObj.geometry.setDrawRange(0, n); rowLines.geometry.setDrawRange(0, m); return; }
+  const p0 = firstOfRow[row], p1 = p0 + rows[row].length, l0 = 2 * (p0 - row), l1 = 2 * (p1 - row - 1);
+  if (part === 0) { pointsObj.geometry.setDrawRange(0, p0); rowLines.geometry.setDrawRange(0, l0); }
+  else if (part === 1) { pointsObj.geometry.setDrawRange(p1, n - p1); rowLines.geometry.setDrawRange(l1, m - l1); }
+  else { pointsObj.geometry.setDrawRange(p0, p1 - p0); rowLines.geometry.setDrawRange(l0, l1 - l0); }
+}
+function drawBackdrop(row) {
+  const size = renderer.getDrawingBufferSize(new THREE.Vector2());
+  if (!backdrop.rt || backdrop.rt.width !== size.x || backdrop.rt.height !== size.y) {
+    if (backdrop.rt) backdrop.rt.dispose();
+    backdrop.rt = new THREE.WebGLRenderTarget(size.x, size.y, {
+      minFilter: THREE.NearestFilter, magFilter: THREE.NearestFilter, colorSpace: THREE.SRGBColorSpace,
+      depthTexture: new THREE.DepthTexture(size.x, size.y) });
+    backdrop.quad.material.uniforms.tColour.value = backdrop.rt.texture;
+    backdrop.quad.material.uniforms.tDepth.value = backdrop.rt.depthTexture;
+  }
+  const others = [surfaceMesh, netLines, marker, selMarker].filter((o) => o && o.visible);
+  for (const o of others) o.visible = false;
+  renderer.setRenderTarget(backdrop.rt);  // sRGB storage, linear values (three.js's colour management)
+  for (const part of [0, 1]) {  // the first pass clears (in the target's colour space)
+    pointRange(row, part);
+    renderer.autoClear = part === 0;
+    renderer.render(scene, camera);
+  }
+  renderer.autoClear = true;
+  renderer.setRenderTarget(null);
+  for (const o of others) o.visible = true;
+  pointRange(row, 2);
+  backdrop.row = row;
+}
+function endBackdrop() {
+  backdrop.invalidate();
+  if (pointsObj) pointRange(-1);
+}
+
+// Frames are drawn on demand, at most one at a time: while the GPU (on software GL, the
+// CPU) still draws the last one, nothing new is issued, so frames never queue up behind each
+// other; a refitted state that arrived meanwhile waits, and only the newest is drawn.
+let drawing = false, incoming = null;  // incoming: the newest refitted drag state, not yet shown
+function loop() {
   requestAnimationFrame(loop);
+  if (drawing) return;
+  if (incoming) {
+    const { st, job } = incoming;
+    incoming = null;
+    if (!state || st.version >= state.version) applyState(st, job);
+  }
+  if (!needsRender) return;
+  needsRender = false;
+  sun.position.copy(camera.position);
+  const t0 = performance.now();
+  if (drag && pointsObj && !hook.noBackdrop && !backdrop.valid(drag.row)) drawBackdrop(drag.row);
+  if (hook.noBackdrop && backdrop.row >= 0) endBackdrop();
+  if (drag && backdrop.valid(drag.row)) {
+    renderer.render(backdrop.scene, backdrop.camera);
+    renderer.autoClear = false;
+    renderer.render(scene, camera);
+    renderer.autoClear = true;
+  } else {
+    renderer.render(scene, camera);
+  }
+  hook.renderMs = performance.now() - t0;
+  hook.frames++;
+  drawing = true;
+  const waiters = frameWaiters;
+  frameWaiters = [];
+  whenDrawn((now) => {
+    drawing = false;
+    hook.drawMs = now - t0;
+    for (const f of waiters) f(now, t0);
+  });
 }
 
 // ---- what is shown -----------------------------------------------------------------------
@@ -145,26 +253,50 @@ function surfaceColours(mode) {
   return c;
 }
 
-function buildSurface(final) {
-  const [su, sv] = final ? sampleCounts(state.surface, 12, 240) : sampleCounts(state.surface, 3, 48);
-  tess = tessellate(state.surface, su, sv, centre);
-  const g = new THREE.BufferGeometry();
-  g.setAttribute("position", new THREE.BufferAttribute(tess.position, 3));
-  g.setAttribute("normal", new THREE.BufferAttribute(tess.normal, 3));
-  const index = [];
+// The surface's mesh: its buffers are updated in place while the grid keeps its size and
+// the colouring its kind (a drag); the basis values at the samples are kept (Tessellator).
+const tessellator = new Tessellator();
+let surfaceKind = "";
+function gridIndex(su, sv) {
+  const index = new (su * sv > 65535 ? Uint32Array : Uint16Array)(6 * (su - 1) * (sv - 1));
+  let k = 0;
   for (let i = 0; i + 1 < su; i++)
     for (let j = 0; j + 1 < sv; j++) {
       const a = i * sv + j, b = a + sv;
-      index.push(a, b, a + 1, a + 1, b, b + 1);
+      index[k++] = a; index[k++] = b; index[k++] = a + 1;
+      index[k++] = a + 1; index[k++] = b; index[k++] = b + 1;
     }
-  g.setIndex(index);
+  return index;
+}
+function buildSurface(final) {
+  const [su, sv] = final ? sampleCounts(state.surface, 12, 240) : sampleCounts(state.surface, 3, 48);
   const mode = $("mode").value;
-  if (mode === "deviation" || mode === "curvature")
-    g.setAttribute("color", new THREE.BufferAttribute(surfaceColours(mode), 3));
+  const coloured = mode === "deviation" || mode === "curvature";
+  tess = tessellator.run(state.surface, su, sv, centre, mode === "curvature");
+  const kind = `${su}x${sv}:${coloured}`;
   const mat = mode === "zebra" ? zebraMaterial : mode === "shaded" ? shadedMaterial : colouredMaterial;
-  if (surfaceMesh) { world.remove(surfaceMesh); surfaceMesh.geometry.dispose(); }
-  surfaceMesh = new THREE.Mesh(g, mat);
-  world.add(surfaceMesh);
+  if (surfaceMesh && kind === surfaceKind) {
+    const g = surfaceMesh.geometry;
+    g.attributes.position.needsUpdate = true;  // the tessellator wrote into these arrays
+    g.attributes.normal.needsUpdate = true;
+    if (coloured) {
+      g.attributes.color.array.set(surfaceColours(mode));
+      g.attributes.color.needsUpdate = true;
+    }
+    g.computeBoundingSphere();
+    surfaceMesh.material = mat;
+  } else {
+    const g = new THREE.BufferGeometry();
+    g.setAttribute("position", new THREE.BufferAttribute(tess.position, 3).setUsage(THREE.DynamicDrawUsage));
+    g.setAttribute("normal", new THREE.BufferAttribute(tess.normal, 3).setUsage(THREE.DynamicDrawUsage));
+    g.setIndex(new THREE.BufferAttribute(gridIndex(su, sv), 1));
+    if (coloured)
+      g.setAttribute("color", new THREE.BufferAttribute(surfaceColours(mode), 3).setUsage(THREE.DynamicDrawUsage));
+    if (surfaceMesh) { world.remove(surfaceMesh); surfaceMesh.geometry.dispose(); }
+    surfaceMesh = new THREE.Mesh(g, mat);
+    world.add(surfaceMesh);
+    surfaceKind = kind;
+  }
   buildNet();
 }
 
@@ -186,6 +318,7 @@ function buildNet() {
 
 let firstOfRow = [];  // flat index of each row's first point in the point buffers
 function buildPoints() {
+  backdrop.invalidate();
   for (const o of [pointsObj, rowLines]) if (o) { world.remove(o); o.geometry.dispose(); }
   firstOfRow = [];
   rows.reduce((s, r) => { firstOfRow.push(s); return s + r.length; }, 0);
@@ -228,16 +361,24 @@ function moveDrawnPoint(row, index, p) {
   lp.needsUpdate = true;
 }
 
+// A marker: one point drawn on top, its buffer moved in place.
 function markerAt(obj, p, colour, size) {
-  if (obj) world.remove(obj);
-  if (!p) return null;
-  const g = new THREE.BufferGeometry();
-  g.setAttribute("position", new THREE.Float32BufferAttribute(p.map((x, a) => x - centre[a]), 3));
-  const m = new THREE.Points(g, new THREE.PointsMaterial({
-    size, sizeAttenuation: false, color: colour, depthTest: false, transparent: true, opacity: 0.9 }));
-  m.renderOrder = 2;
-  world.add(m);
-  return m;
+  if (!obj) {
+    const g = new THREE.BufferGeometry();
+    g.setAttribute("position", new THREE.BufferAttribute(new Float32Array(3), 3));
+    obj = new THREE.Points(g, new THREE.PointsMaterial({
+      size, sizeAttenuation: false, color: colour, depthTest: false, transparent: true, opacity: 0.9 }));
+    obj.renderOrder = 2;
+    obj.frustumCulled = false;
+    world.add(obj);
+  }
+  obj.visible = !!p;
+  if (p) {
+    const a = obj.geometry.attributes.position;
+    a.setXYZ(0, p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]);
+    a.needsUpdate = true;
+  }
+  return obj;
 }
 
 function updateMarkers() {
@@ -305,8 +446,9 @@ function applyState(st, job) {
   hook.applyMs = performance.now() - t0;
   needsRender = true;
   if (job && job.t !== undefined)
-    frameWaiters.push((now) => hook.latencies.push({ ms: now - job.t, final: st.final, phase: job.phase,
-      wait: job.sent - job.t, request: job.received - job.sent, apply: performance.now() - job.received }));
+    frameWaiters.push((now, drawn) => hook.latencies.push({ t: job.t, ms: now - job.t, final: st.final, phase: job.phase,
+      wait: job.sent - job.t, request: job.received - job.sent, server: 1000 * st.report.seconds,
+      apply: now - job.received, slot: t0 - job.received, js: drawn - t0, draw: now - drawn }));
 }
 
 function message(text, good = false) {
@@ -322,26 +464,30 @@ async function pump() {
   if (inFlight || !pending) return;
   const job = pending; pending = null; inFlight = true;
   job.sent = performance.now();
+  let st = null;
   try {
-    const st = await api.edit({ op: "move", row: job.row, index: job.index, to: job.to,
+    st = await api.edit({ op: "move", row: job.row, index: job.index, to: job.to,
       phase: job.phase, seq: ++seq }, job.phase !== "drag");
     job.received = performance.now();
-    if (!st.skipped) applyState(st, job);
-    job.applied = performance.now();
     message("");
   } catch (e) {
     message(e.message);
     if (job.phase !== "drag") refresh();
   }
   inFlight = false;
+  needsRender = true;
+  // The newest position goes out at once, while this answer is drawn.
   if (pending) pump();
-  else if (drag && job.phase === "drag") {
+  if (st && !st.skipped) {
+    if (job.phase === "drag") incoming = { st, job };  // drawn by the next frame, if still the newest
+    else applyState(st, job);
+  }
+  if (!inFlight && !pending && drag && job.phase === "drag") {
     clearTimeout(restTimer);
     restTimer = setTimeout(() => {  // the hand rests: the full search, a fine tessellation
       if (drag && !pending) queueMove({ ...drag.last, phase: "rest" });
     }, 250);
   }
-  hook.idle = !inFlight && !pending && !drag;
 }
 
 async function refresh() { applyState(await api.getState(true)); }
@@ -415,16 +561,20 @@ renderer.domElement.addEventListener("pointermove", (e) => {
   rows[drag.row][drag.index] = to;  // the point follows the hand at once
   moveDrawnPoint(drag.row, drag.index, to);
   drag.last = { row: drag.row, index: drag.index, to };
+  hook.moves.push(e.timeStamp);
   clearTimeout(restTimer);
   queueMove({ ...drag.last, phase: "drag", t: e.timeStamp });
   updateMarkers();
-  needsRender = true;
+  // Drawn with the refit of this step (or a newer one), whose answer comes next: a frame of
+  // the moved point alone would only delay that one on a software rasteriser.
+  if (!inFlight) needsRender = true;
 });
 function endDrag(e) {
   if (!drag) return;
   const d = drag;
   drag = null;
   controls.enabled = true;
+  endBackdrop();
   coarseImage(false);
   clearTimeout(restTimer);
   if (d.last) queueMove({ ...d.last, phase: "end", t: e.timeStamp });
@@ -441,6 +591,7 @@ $("mode").addEventListener("change", () => { if (state) { buildSurface(state.fin
 $("net").addEventListener("change", () => { if (state) { buildNet(); needsRender = true; } });
 $("points").addEventListener("change", () => {
   for (const o of [pointsObj, rowLines]) if (o) o.visible = $("points").checked;
+  backdrop.invalidate();
   needsRender = true;
 });
 
@@ -521,7 +672,10 @@ hook.nextFrame = () => new Promise((res) => { frameWaiters.push(res); needsRende
 
 resize();
 requestAnimationFrame(loop);
-refresh().then(() => { hook.ready = true; hook.idle = true; }, (e) => {
+// Nothing sent, in flight or waiting to be drawn, and the last frame drawn.
+Object.defineProperty(hook, "idle", {
+  get: () => hook.ready && !inFlight && !pending && !drag && !incoming && !optInFlight && !needsRender && !drawing });
+refresh().then(() => { hook.ready = true; }, (e) => {
   $("status").className = "status bad";
   $("status").textContent = "cannot reach the server: " + e.message;
 });
