@@ -402,7 +402,11 @@ function showReport() {
     <tr><td>worst point</td><td>row ${r.worst.row}, point ${r.worst.index} (red)</td></tr>
     <tr><td>parameters</td><td>${r.parameters}; ${r.solves} solves, ${(1000 * r.seconds).toFixed(2)} ms</td></tr></table>`;
   const s = $("status");
-  if (!d.within) { s.className = "status bad"; s.textContent = "NOT within T: see the worst point"; }
+  if (!d.within && !state.final) {
+    s.className = "status quick over";
+    s.textContent = `quick refit at the current counts, every point checked: ${used}% of T, over T at the worst point; ` +
+      "the final fit (more control points where needed) follows when you pause";
+  } else if (!d.within) { s.className = "status bad"; s.textContent = "NOT within T: see the worst point"; }
   else if (state.final) {
     s.className = "status";
     s.textContent = `final surface: fewest control points, every point checked (max ${used}% of T)`;
