@@ -8,8 +8,9 @@ import { curvatureColour, deviationColour } from "./colours.js";
 
 const $ = (id) => document.getElementById(id);
 // For tests and benchmarks: the last state, frames drawn, move-to-frame latencies, the
-// times of the drag's mouse events; noBackdrop = true draws every frame of a drag whole.
-const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], moves: [], ready: false });
+// times of the drag's mouse events; noBackdrop = true draws every frame of a drag whole;
+// restMs: how long the hand rests before the full fit.
+const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], moves: [], ready: false, restMs: 250 });
 
 // ---- the view ----------------------------------------------------------------------------
 const view = $("view");
@@ -390,31 +391,42 @@ function updateMarkers() {
 const g4 = (x) => (Math.abs(x) >= 1e4 || (Math.abs(x) < 1e-3 && x !== 0) ? x.toExponential(3) : x.toPrecision(4));
 const vec = (p) => `${g4(p[0])}, ${g4(p[1])}, ${g4(p[2])}`;
 
+// The report's cells are made once and only their changed texts set: on software GL a page
+// whose layout changes is re-rastered in the same process that draws the view.
+const setText = (el, text) => { if (el.textContent !== text) el.textContent = text; };
+const setClass = (el, name) => { if (el.className !== name) el.className = name; };
+let reportCells = null;
 function showReport() {
   const r = state.report, d = state.deviation;
   const used = d.used === null ? "∞" : (100 * d.used).toFixed(1);
-  $("report").innerHTML = `<table>
-    <tr><td>control points</td><td>${r.control_points[0]} × ${r.control_points[1]} (degree ${r.degree[0]} × ${r.degree[1]})</td></tr>
-    <tr><td>points</td><td>${r.points} in ${r.rows} rows</td></tr>
-    <tr><td>max deviation</td><td>${vec(d.max)}</td></tr>
-    <tr><td>T</td><td>${vec(d.tolerance)}</td></tr>
-    <tr><td>used</td><td class="${d.within ? "within" : "out"}">${used}% of T: ${d.within ? "within T" : "NOT within T"}</td></tr>
-    <tr><td>worst point</td><td>row ${r.worst.row}, point ${r.worst.index} (red)</td></tr>
-    <tr><td>parameters</td><td>${r.parameters}; ${r.solves} solves, ${(1000 * r.seconds).toFixed(2)} ms</td></tr></table>`;
+  if (!reportCells) {
+    const names = ["control points", "points", "max deviation", "T", "used", "worst point", "parameters"];
+    $("report").innerHTML = "<table>" + names.map((n) => `<tr><td>${n}</td><td></td></tr>`).join("") + "</table>";
+    reportCells = Array.from($("report").querySelectorAll("tr td:nth-child(2)"));
+  }
+  const c = reportCells;
+  setText(c[0], `${r.control_points[0]} × ${r.control_points[1]} (degree ${r.degree[0]} × ${r.degree[1]})`);
+  setText(c[1], `${r.points} in ${r.rows} rows`);
+  setText(c[2], vec(d.max));
+  setText(c[3], vec(d.tolerance));
+  setText(c[4], `${used}% of T: ${d.within ? "within T" : "NOT within T"}`);
+  setClass(c[4], d.within ? "within" : "out");
+  setText(c[5], `row ${r.worst.row}, point ${r.worst.index} (red)`);
+  setText(c[6], `${r.parameters}; ${r.solves} solves, ${(1000 * r.seconds).toFixed(2)} ms`);
   const s = $("status");
   if (!d.within && !state.final) {
-    s.className = "status quick over";
-    s.textContent = `quick refit at the current counts, every point checked: ${used}% of T, over T at the worst point; ` +
-      "the final fit (more control points where needed) follows when you pause";
-  } else if (!d.within) { s.className = "status bad"; s.textContent = "NOT within T: see the worst point"; }
+    setClass(s, "status quick over");
+    setText(s, `quick refit at the current counts, every point checked: ${used}% of T, over T at the worst point; ` +
+      "the final fit (more control points where needed) follows when you pause");
+  } else if (!d.within) { setClass(s, "status bad"); setText(s, "NOT within T: see the worst point"); }
   else if (state.final) {
-    s.className = "status";
-    s.textContent = `final surface: fewest control points, every point checked (max ${used}% of T)`;
+    setClass(s, "status");
+    setText(s, `final surface: fewest control points, every point checked (max ${used}% of T)`);
   } else {
-    s.className = "status quick";
-    s.textContent = `quick refit at the current counts (every point checked, max ${used}% of T); the final one follows when you pause`;
+    setClass(s, "status quick");
+    setText(s, `quick refit at the current counts (every point checked, max ${used}% of T); the final one follows when you pause`);
   }
-  $("depths").textContent = `${state.undo} undo, ${state.redo} redo`;
+  setText($("depths"), `${state.undo} undo, ${state.redo} redo`);
 }
 
 function showOptions() {
@@ -490,7 +502,7 @@ async function pump() {
     clearTimeout(restTimer);
     restTimer = setTimeout(() => {  // the hand rests: the full search, a fine tessellation
       if (drag && !pending) queueMove({ ...drag.last, phase: "rest" });
-    }, 250);
+    }, hook.restMs);
   }
 }
 
