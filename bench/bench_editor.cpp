@@ -2,7 +2,7 @@
 // surface, over HTTP on 127.0.0.1 (the real server, in-process), and the refit alone
 // (Session, no HTTP). Drag steps refit at the current counts (quick); a whole move
 // (phase once) runs the full count search. Prints p50 and p95 per size.
-// Usage: bench_editor [max_points]   (default 100000)
+// Usage: bench_editor [max_points [drag|once]]   (default 100000, both kinds of move)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -42,6 +42,7 @@ double since(Clock::time_point t0) {
 
 int main(int argc, char** argv) {
   const long max_points = argc > 1 ? std::atol(argv[1]) : 100000;
+  const std::string only = argc > 2 ? argv[2] : "";
   struct Size {
     int rows, per_row;
   };
@@ -61,6 +62,7 @@ int main(int argc, char** argv) {
     const double step = 1e-3 * sfit::bounding_box(rows).diagonal();
 
     for (const char* phase : {"drag", "once"}) {
+      if (!only.empty() && only != phase) continue;
       // The full search at 10^5 points takes seconds: fewer repetitions.
       const int reps = std::string(phase) == "once" && n > 20000 ? 5 : reps_quick;
       // The refit alone.
