@@ -8,8 +8,7 @@ import { curvatureColour, deviationColour } from "./colours.js";
 
 const $ = (id) => document.getElementById(id);
 // For tests and benchmarks: the last state, frames drawn, move-to-frame latencies, the
-// times of the drag's mouse events; noBackdrop = true draws every frame of a drag whole;
-// restMs: how long the hand rests before the full fit.
+// times of the drag's mouse events; restMs: how long the hand rests before the full fit.
 const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], moves: [], ready: false, restMs: 250 });
 
 // ---- the view ----------------------------------------------------------------------------
@@ -27,9 +26,7 @@ const renderer = new THREE.WebGLRenderer({ antialias: !hook.softwareGL, preserve
 renderer.setPixelRatio(window.devicePixelRatio || 1);
 view.appendChild(renderer.domElement);
 const scene = new THREE.Scene();
-// The clear colour, not scene.background (with which three.js clears on every render): the
-// drag's backdrop (below) is drawn first and the rest over it without a clear.
-renderer.setClearColor(0x1d2024, 1);
+scene.background = new THREE.Color(0x1d2024);
 const camera = new THREE.PerspectiveCamera(40, 1, 0.001, 1000);
 const controls = new OrbitControls(camera, renderer.domElement);
 scene.add(new THREE.HemisphereLight(0xffffff, 0x404050, 1.6));
@@ -49,7 +46,6 @@ function coarseImage(on) {
   resize();
 }
 function resize() {
-  backdrop.invalidate();
   const w = view.clientWidth, h = view.clientHeight;
   renderer.setSize(w, h);
   camera.aspect = w / Math.max(1, h);
@@ -75,75 +71,17 @@ function whenDrawn(done) {
   };
   setTimeout(poll, 0);
 }
-// While a point is dragged the camera stands still and only the surface, the dragged row and
-// the markers change: the other rows' points and lines (10^4 points are most of a frame's
-// work on a software rasteriser) are drawn once, at the start of the drag, into a texture
-// with its depth; each frame of the drag copies it back, depth included (so the surface
-// still hides what lies behind it), and draws only what changes over it.
-const backdrop = {
-  rt: null, row: -1,
-  scene: new THREE.Scene(),
-  camera: new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1),
-  quad: null,
-  valid(row) { return this.rt !== null && this.row === row; },
-  invalidate() { this.row = -1; },
-};
-backdrop.quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.ShaderMaterial({
-  uniforms: { tColour: { value: null }, tDepth: { value: null } },
-  vertexShader: `varying vec2 vUv; void main() { vUv = uv; gl_Position = vec4(position.xy, 0.0, 1.0); }`,
-  fragmentShader: `uniform sampler2D tColour; uniform sampler2D tDepth; varying vec2 vUv;
-    void main() { gl_FragColor = texture2D(tColour, vUv); gl_FragDepth = texture2D(tDepth, vUv).x;
-      #include <colorspace_fragment>
-    }`,
-  depthTest: true, depthWrite: true, depthFunc: THREE.AlwaysDepth,
-}));
-backdrop.quad.frustumCulled = false;
-backdrop.scene.add(backdrop.quad);
-// The drawn range of the points and the row lines: all (row < 0), all but `row` (part 0:
-// before it, 1: after it), or only `row` (live).
-function pointRange(row, part) {
-  const n = pointsObj.geometry.attributes.position.count, m = rowLines.geometry.attributes.position.count;
-  if (row < 0) { pointsObj.geometry.setDrawRange(0, n); rowLines.geometry.setDrawRange(0, m); return; }
-  const p0 = firstOfRow[row], p1 = p0 + rows[row].length, l0 = 2 * (p0 - row), l1 = 2 * (p1 - row - 1);
-  if (part === 0) { pointsObj.geometry.setDrawRange(0, p0); rowLines.geometry.setDrawRange(0, l0); }
-  else if (part === 1) { pointsObj.geometry.setDrawRange(p1, n - p1); rowLines.geometry.setDrawRange(l1, m - l1); }
-  else { pointsObj.geometry.setDrawRange(p0, p1 - p0); rowLines.geometry.setDrawRange(l0, l1 - l0); }
-}
-function drawBackdrop(row) {
-  const size = renderer.getDrawingBufferSize(new THREE.Vector2());
-  if (!backdrop.rt || backdrop.rt.width !== size.x || backdrop.rt.height !== size.y) {
-    if (backdrop.rt) backdrop.rt.dispose();
-    backdrop.rt = new THREE.WebGLRenderTarget(size.x, size.y, {
-      minFilter: THREE.NearestFilter, magFilter: THREE.NearestFilter, colorSpace: THREE.SRGBColorSpace,
-      depthTexture: new THREE.DepthTexture(size.x, size.y) });
-    backdrop.quad.material.uniforms.tColour.value = backdrop.rt.texture;
-    backdrop.quad.material.uniforms.tDepth.value = backdrop.rt.depthTexture;
-  }
-  const others = [surfaceMesh, netLines, marker, selMarker].filter((o) => o && o.visible);
-  for (const o of others) o.visible = false;
-  renderer.setRenderTarget(backdrop.rt);  // sRGB storage, linear values (three.js's colour management)
-  for (const part of [0, 1]) {  // the first pass clears (in the target's colour space)
-    pointRange(row, part);
-    renderer.autoClear = part === 0;
-    renderer.render(scene, camera);
-  }
-  renderer.autoClear = true;
-  renderer.setRenderTarget(null);
-  for (const o of others) o.visible = true;
-  pointRange(row, 2);
-  backdrop.row = row;
-}
-function endBackdrop() {
-  backdrop.invalidate();
-  if (pointsObj) pointRange(-1);
-}
-
 // Frames are drawn on demand, at most one at a time: while the GPU (on software GL, the
 // CPU) still draws the last one, nothing new is issued, so frames never queue up behind each
-// other; a refitted state that arrived meanwhile waits, and only the newest is drawn.
+// other; a refitted state that arrived meanwhile waits, and only the newest is drawn. A drag's
+// refitted state is drawn as soon as it arrives (or the frame before it is done), not at the
+// next animation frame: the compositor shows it at its next frame either way.
 let drawing = false, incoming = null;  // incoming: the newest refitted drag state, not yet shown
 function loop() {
   requestAnimationFrame(loop);
+  frame();
+}
+function frame() {
   if (drawing) return;
   if (incoming) {
     const { st, job } = incoming;
@@ -154,16 +92,7 @@ function loop() {
   needsRender = false;
   sun.position.copy(camera.position);
   const t0 = performance.now();
-  if (drag && pointsObj && !hook.noBackdrop && !backdrop.valid(drag.row)) drawBackdrop(drag.row);
-  if (hook.noBackdrop && backdrop.row >= 0) endBackdrop();
-  if (drag && backdrop.valid(drag.row)) {
-    renderer.render(backdrop.scene, backdrop.camera);
-    renderer.autoClear = false;
-    renderer.render(scene, camera);
-    renderer.autoClear = true;
-  } else {
-    renderer.render(scene, camera);
-  }
+  renderer.render(scene, camera);
   hook.renderMs = performance.now() - t0;
   hook.frames++;
   drawing = true;
@@ -173,6 +102,7 @@ function loop() {
     drawing = false;
     hook.drawMs = now - t0;
     for (const f of waiters) f(now, t0);
+    if (incoming) frame();
   });
 }
 
@@ -319,7 +249,6 @@ function buildNet() {
 
 let firstOfRow = [];  // flat index of each row's first point in the point buffers
 function buildPoints() {
-  backdrop.invalidate();
   for (const o of [pointsObj, rowLines]) if (o) { world.remove(o); o.geometry.dispose(); }
   firstOfRow = [];
   rows.reduce((s, r) => { firstOfRow.push(s); return s + r.length; }, 0);
@@ -352,13 +281,15 @@ function buildPoints() {
 function moveDrawnPoint(row, index, p) {
   const k = firstOfRow[row] + index;
   const q = p.map((x, a) => x - centre[a]);
+  // Only the changed vertices are sent to the GPU (10^4 points are 360 kB with their lines).
   const pos = pointsObj.geometry.attributes.position;
   pos.setXYZ(k, q[0], q[1], q[2]);
+  pos.addUpdateRange(3 * k, 3);
   pos.needsUpdate = true;
   const lp = rowLines.geometry.attributes.position;
   const seg = firstOfRow[row] - row + index - 1;  // the segment ending at this point
-  if (index > 0) lp.setXYZ(2 * seg + 1, q[0], q[1], q[2]);
-  if (index + 1 < rows[row].length) lp.setXYZ(2 * (seg + 1), q[0], q[1], q[2]);
+  if (index > 0) { lp.setXYZ(2 * seg + 1, q[0], q[1], q[2]); lp.addUpdateRange(3 * (2 * seg + 1), 3); }
+  if (index + 1 < rows[row].length) { lp.setXYZ(2 * (seg + 1), q[0], q[1], q[2]); lp.addUpdateRange(3 * (2 * seg + 2), 3); }
   lp.needsUpdate = true;
 }
 
@@ -495,7 +426,10 @@ async function pump() {
   // The newest position goes out at once, while this answer is drawn.
   if (pending) pump();
   if (st && !st.skipped) {
-    if (job.phase === "drag") incoming = { st, job };  // drawn by the next frame, if still the newest
+    if (job.phase === "drag") {  // drawn now, or when the frame before is done, if still the newest
+      incoming = { st, job };
+      frame();
+    }
     else applyState(st, job);
   }
   if (!inFlight && !pending && drag && job.phase === "drag") {
@@ -590,7 +524,6 @@ function endDrag(e) {
   const d = drag;
   drag = null;
   controls.enabled = true;
-  endBackdrop();
   coarseImage(false);
   clearTimeout(restTimer);
   if (d.last) queueMove({ ...d.last, phase: "end", t: e.timeStamp });
@@ -607,7 +540,6 @@ $("mode").addEventListener("change", () => { if (state) { buildSurface(state.fin
 $("net").addEventListener("change", () => { if (state) { buildNet(); needsRender = true; } });
 $("points").addEventListener("change", () => {
   for (const o of [pointsObj, rowLines]) if (o) o.visible = $("points").checked;
-  backdrop.invalidate();
   needsRender = true;
 });
 

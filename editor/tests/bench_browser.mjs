@@ -33,8 +33,6 @@ const page = await browser.newPage();
 await page.goto(ed.url);
 await page.waitForFunction(() => window.sfitEditor && window.sfitEditor.ready, { timeout: 120000 });
 await page.evaluate(() => window.sfitEditor.nextFrame());
-// SFIT_BENCH_NO_BACKDROP=1: every frame of a drag drawn whole (for comparison).
-if (process.env.SFIT_BENCH_NO_BACKDROP === "1") await page.evaluate(() => { window.sfitEditor.noBackdrop = true; });
 
 const pctl = (xs, q) => { const s = [...xs].sort((a, b) => a - b); return s[Math.min(s.length - 1, Math.floor(q * s.length))]; };
 const results = [];
