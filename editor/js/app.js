@@ -98,10 +98,12 @@ function frame() {
   drawing = true;
   const waiters = frameWaiters;
   frameWaiters = [];
-  whenDrawn((now) => {
+  whenDrawn((drawn) => {
     drawing = false;
-    hook.drawMs = now - t0;
-    for (const f of waiters) f(now, t0);
+    hook.drawMs = drawn - t0;
+    // Shown: the next animation frame after the drawing is done is the one that hands the
+    // canvas to the compositor (which displays it with that frame).
+    if (waiters.length) requestAnimationFrame(() => { const now = performance.now(); for (const f of waiters) f(now, t0, drawn); });
     if (incoming) frame();
   });
 }
@@ -393,9 +395,9 @@ function applyState(st, job) {
   hook.applyMs = performance.now() - t0;
   needsRender = true;
   if (job && job.t !== undefined)
-    frameWaiters.push((now, drawn) => hook.latencies.push({ t: job.t, ms: now - job.t, final: st.final, phase: job.phase,
-      wait: job.sent - job.t, request: job.received - job.sent, server: 1000 * st.report.seconds,
-      apply: now - job.received, slot: t0 - job.received, js: drawn - t0, draw: now - drawn }));
+    frameWaiters.push((now, start, drawn) => hook.latencies.push({ t: job.t, ms: now - job.t, final: st.final,
+      phase: job.phase, wait: job.sent - job.t, request: job.received - job.sent, server: 1000 * st.report.seconds,
+      apply: now - job.received, slot: t0 - job.received, js: start - t0, draw: drawn - start, show: now - drawn }));
 }
 
 function message(text, good = false) {

@@ -1,6 +1,7 @@
 // Latency of the editor in the browser: from the mouse event of a drag step to the frame
-// that shows its refitted surface, drawn (the GPU's work done, by a WebGL2 fence), on a
-// 100 x 100 grid (10^4 points; bench/synthetic.h's terrain). Drag steps that a newer one
+// that shows its refitted surface (drawn: the GPU's work done, by a WebGL2 fence; shown: the
+// next animation frame, which hands the canvas to the compositor), on a 100 x 100 grid
+// (10^4 points; bench/synthetic.h's terrain). Drag steps that a newer one
 // overtook are skipped, not shown (latest wins), so only the shown ones have a latency of
 // their own; every mouse event is also timed to the first frame showing it or a newer step.
 // Usage (after building):
@@ -26,6 +27,7 @@ for (let j = 0; j < M; j++) {
 }
 writeFileSync(file, text);
 
+const compositing = process.env.SFIT_CHROMIUM_GL_COMPOSITING === "1" ? "GL compositing on SwiftShader" : "software compositing";
 const ed = await startEditor(SFIT, file);
 const puppeteer = await loadPuppeteer();
 const browser = await launch(puppeteer);
@@ -66,9 +68,10 @@ const every = results.flatMap((r) => {
 const med = (k) => pctl(dragLat.map((l) => l[k]), 0.5);
 console.log(`  median split: waiting for the previous request ${med("wait").toFixed(1)} ms, request ${med("request").toFixed(1)} ms ` +
   `(of which the refit ${med("server").toFixed(1)} ms), from the response to the frame drawn ${med("apply").toFixed(1)} ms ` +
-  `(waiting for the frame before ${med("slot").toFixed(1)}, tessellation and buffers ${med("js").toFixed(1)}, drawing ${med("draw").toFixed(1)})`);
+  `(waiting for the frame before ${med("slot").toFixed(1)}, tessellation and buffers ${med("js").toFixed(1)}, drawing ${med("draw").toFixed(1)}, ` +
+  `to the next animation frame ${med("show").toFixed(1)})`);
 const moves = results.reduce((s, r) => s + r.moves, 0);
-console.log(`points ${M * N}: mouse event -> new frame drawn, quick (drag) p50 ${pctl(drag, 0.5).toFixed(1)} ms, ` +
+console.log(`points ${M * N} (${compositing}): mouse event -> new frame shown, quick (drag) p50 ${pctl(drag, 0.5).toFixed(1)} ms, ` +
   `p95 ${pctl(drag, 0.95).toFixed(1)} ms (${drag.length} of ${moves} moves shown, the rest overtaken); ` +
   `every mouse event to the first frame showing it or a newer step: p50 ${pctl(every, 0.5).toFixed(1)} ms, ` +
   `p95 ${pctl(every, 0.95).toFixed(1)} ms; final refit after release p50 ${pctl(fin, 0.5).toFixed(1)} ms`);
