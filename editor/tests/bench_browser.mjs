@@ -36,7 +36,11 @@ await page.goto(ed.url);
 await page.waitForFunction(() => window.sfitEditor && window.sfitEditor.ready, { timeout: 120000 });
 await page.evaluate(() => window.sfitEditor.nextFrame());
 
-const pctl = (xs, q) => { const s = [...xs].sort((a, b) => a - b); return s[Math.min(s.length - 1, Math.floor(q * s.length))]; };
+const pctl = (xs, q) => {
+  if (!xs.length) return NaN;
+  const s = [...xs].sort((a, b) => a - b);
+  return s[Math.min(s.length - 1, Math.floor(q * s.length))];
+};
 const results = [];
 for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(M / 3), Math.floor(N / 4)]]) {
   await page.evaluate(() => { window.sfitEditor.latencies = []; window.sfitEditor.moves = []; });
@@ -51,6 +55,7 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.mouse.up();
   await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging,
     { timeout: 120000 });
+  await page.evaluate(() => window.sfitEditor.nextFrame());  // the last latency recorded
   const { lat, times } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies, times: window.sfitEditor.moves }));
   results.push({ moves, lat, times });
 }
