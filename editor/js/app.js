@@ -506,7 +506,10 @@ renderer.domElement.addEventListener("pointerdown", (e) => {
   renderer.domElement.setPointerCapture(e.pointerId);
   e.preventDefault();
 });
-renderer.domElement.addEventListener("pointermove", (e) => {
+// pointerrawupdate where the browser has it: Chromium delivers pointermove only with the next
+// animation frame, the raw event as soon as the hand moves.
+const moveEvent = "onpointerrawupdate" in window ? "pointerrawupdate" : "pointermove";
+renderer.domElement.addEventListener(moveEvent, (e) => {
   if (!drag) return;
   const to = dragTarget(e);
   if (!to) return;
