@@ -2,7 +2,7 @@
 // surface, over HTTP on 127.0.0.1 (the real server, in-process), and the refit alone
 // (Session, no HTTP). Drag steps refit at the current counts (quick); a whole move
 // (phase once) runs the full count search. Prints p50 and p95 per size.
-// Usage: bench_editor [max_points]   (default 100000)
+// Usage: bench_editor [max_points [drag|once]]   (default 100000, both kinds of move)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -42,6 +42,7 @@ double since(Clock::time_point t0) {
 
 int main(int argc, char** argv) {
   const long max_points = argc > 1 ? std::atol(argv[1]) : 100000;
+  const std::string only = argc > 2 ? argv[2] : "";
   struct Size {
     int rows, per_row;
   };
@@ -55,12 +56,15 @@ int main(int argc, char** argv) {
     const sfit::Rows rows = sfit::bench::grid(sz.rows, sz.per_row);
     sfit::FitOptions o;
     o.tolerance = sfit::relative_tolerance(rows, 1e-3);
-    const int reps = n <= 1000 ? 400 : n <= 20000 ? 100 : 20;
+    const int reps_quick = n <= 1000 ? 400 : n <= 20000 ? 100 : 20;
     const std::size_t row = sz.rows / 2, index = sz.per_row / 2;
     const sfit::Point p0 = rows[row][index];
     const double step = 1e-3 * sfit::bounding_box(rows).diagonal();
 
     for (const char* phase : {"drag", "once"}) {
+      if (!only.empty() && only != phase) continue;
+      // The full search at 10^5 points takes seconds: fewer repetitions.
+      const int reps = std::string(phase) == "once" && n > 20000 ? 5 : reps_quick;
       // The refit alone.
       std::vector<double> refit;
       {
@@ -85,6 +89,7 @@ int main(int argc, char** argv) {
       httplib::Client client("127.0.0.1", server.port());
       client.set_keep_alive(true);
       client.set_tcp_nodelay(true);
+      client.set_read_timeout(600, 0);  // a full fit of 10^5 points may take many seconds
       const httplib::Headers h{{"X-Sfit-Token", "bench"}};
       std::vector<double> http;
       for (int k = 0; k < reps; ++k) {
@@ -96,7 +101,10 @@ int main(int argc, char** argv) {
         auto r = client.Post("/api/edit?rows=0", h, body.dump(), "application/json");
         http.push_back(since(t0));
         if (!r || r->status != 200) {
-          std::fprintf(stderr, "request failed: %s\n", r ? r->body.c_str() : "no response");
+          std::fprintf(stderr, "request failed: %s\n",
+                       r ? r->body.c_str() : httplib::to_string(r.error()).c_str());
+          server.stop();
+          t.join();
           return 1;
         }
       }

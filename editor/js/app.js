@@ -3,12 +3,13 @@
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 import * as api from "./api.js";
-import { sampleCounts, tessellate } from "./bspline.js";
+import { sampleCounts, Tessellator } from "./bspline.js";
 import { curvatureColour, deviationColour } from "./colours.js";
 
 const $ = (id) => document.getElementById(id);
-// For tests and benchmarks: the last state, frames drawn, move-to-frame latencies.
-const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], ready: false });
+// For tests and benchmarks: the last state, frames drawn, move-to-frame latencies, the
+// times of the drag's mouse events; restMs: how long the hand rests before the full fit.
+const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], moves: [], ready: false, restMs: 250 });
 
 // ---- the view ----------------------------------------------------------------------------
 const view = $("view");
@@ -52,19 +53,59 @@ function resize() {
   needsRender = true;
 }
 window.addEventListener("resize", resize);
-function loop() {
-  if (needsRender) {
-    needsRender = false;
-    sun.position.copy(camera.position);
-    const t0 = performance.now();
-    renderer.render(scene, camera);
-    hook.renderMs = performance.now() - t0;
-    hook.frames++;
-    const now = performance.now();
-    for (const f of frameWaiters) f(now);
-    frameWaiters = [];
+// Calls `done(time)` once the GPU (the software rasteriser on SwiftShader) has finished the
+// commands issued so far, i.e. the frame is drawn, not merely submitted: a WebGL2 fence,
+// polled from the event loop (WebGL updates a fence's status only between tasks).
+const gl = renderer.getContext();
+function whenDrawn(done) {
+  if (typeof WebGL2RenderingContext === "undefined" || !(gl instanceof WebGL2RenderingContext)) {
+    done(performance.now());
+    return;
   }
+  const sync = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+  gl.flush();
+  const poll = () => {
+    if (gl.getSyncParameter(sync, gl.SYNC_STATUS) !== gl.SIGNALED) return void setTimeout(poll, 1);
+    gl.deleteSync(sync);
+    done(performance.now());
+  };
+  setTimeout(poll, 0);
+}
+// Frames are drawn on demand, at most one at a time: while the GPU (on software GL, the
+// CPU) still draws the last one, nothing new is issued, so frames never queue up behind each
+// other; a refitted state that arrived meanwhile waits, and only the newest is drawn. A drag's
+// refitted state is drawn as soon as it arrives (or the frame before it is done), not at the
+// next animation frame: the compositor shows it at its next frame either way.
+let drawing = false, incoming = null;  // incoming: the newest refitted drag state, not yet shown
+function loop() {
   requestAnimationFrame(loop);
+  frame();
+}
+function frame() {
+  if (drawing) return;
+  if (incoming) {
+    const { st, job } = incoming;
+    incoming = null;
+    if (!state || st.version >= state.version) applyState(st, job);
+  }
+  if (!needsRender) return;
+  needsRender = false;
+  sun.position.copy(camera.position);
+  const t0 = performance.now();
+  renderer.render(scene, camera);
+  hook.renderMs = performance.now() - t0;
+  hook.frames++;
+  drawing = true;
+  const waiters = frameWaiters;
+  frameWaiters = [];
+  whenDrawn((drawn) => {
+    drawing = false;
+    hook.drawMs = drawn - t0;
+    // Shown: the next animation frame after the drawing is done is the one that hands the
+    // canvas to the compositor (which displays it with that frame).
+    if (waiters.length) requestAnimationFrame(() => { const now = performance.now(); for (const f of waiters) f(now, t0, drawn); });
+    if (incoming) frame();
+  });
 }
 
 // ---- what is shown -----------------------------------------------------------------------
@@ -145,26 +186,50 @@ function surfaceColours(mode) {
   return c;
 }
 
-function buildSurface(final) {
-  const [su, sv] = final ? sampleCounts(state.surface, 12, 240) : sampleCounts(state.surface, 3, 48);
-  tess = tessellate(state.surface, su, sv, centre);
-  const g = new THREE.BufferGeometry();
-  g.setAttribute("position", new THREE.BufferAttribute(tess.position, 3));
-  g.setAttribute("normal", new THREE.BufferAttribute(tess.normal, 3));
-  const index = [];
+// The surface's mesh: its buffers are updated in place while the grid keeps its size and
+// the colouring its kind (a drag); the basis values at the samples are kept (Tessellator).
+const tessellator = new Tessellator();
+let surfaceKind = "";
+function gridIndex(su, sv) {
+  const index = new (su * sv > 65535 ? Uint32Array : Uint16Array)(6 * (su - 1) * (sv - 1));
+  let k = 0;
   for (let i = 0; i + 1 < su; i++)
     for (let j = 0; j + 1 < sv; j++) {
       const a = i * sv + j, b = a + sv;
-      index.push(a, b, a + 1, a + 1, b, b + 1);
+      index[k++] = a; index[k++] = b; index[k++] = a + 1;
+      index[k++] = a + 1; index[k++] = b; index[k++] = b + 1;
     }
-  g.setIndex(index);
+  return index;
+}
+function buildSurface(final) {
+  const [su, sv] = final ? sampleCounts(state.surface, 12, 240) : sampleCounts(state.surface, 3, 48);
   const mode = $("mode").value;
-  if (mode === "deviation" || mode === "curvature")
-    g.setAttribute("color", new THREE.BufferAttribute(surfaceColours(mode), 3));
+  const coloured = mode === "deviation" || mode === "curvature";
+  tess = tessellator.run(state.surface, su, sv, centre, mode === "curvature");
+  const kind = `${su}x${sv}:${coloured}`;
   const mat = mode === "zebra" ? zebraMaterial : mode === "shaded" ? shadedMaterial : colouredMaterial;
-  if (surfaceMesh) { world.remove(surfaceMesh); surfaceMesh.geometry.dispose(); }
-  surfaceMesh = new THREE.Mesh(g, mat);
-  world.add(surfaceMesh);
+  if (surfaceMesh && kind === surfaceKind) {
+    const g = surfaceMesh.geometry;
+    g.attributes.position.needsUpdate = true;  // the tessellator wrote into these arrays
+    g.attributes.normal.needsUpdate = true;
+    if (coloured) {
+      g.attributes.color.array.set(surfaceColours(mode));
+      g.attributes.color.needsUpdate = true;
+    }
+    g.computeBoundingSphere();
+    surfaceMesh.material = mat;
+  } else {
+    const g = new THREE.BufferGeometry();
+    g.setAttribute("position", new THREE.BufferAttribute(tess.position, 3).setUsage(THREE.DynamicDrawUsage));
+    g.setAttribute("normal", new THREE.BufferAttribute(tess.normal, 3).setUsage(THREE.DynamicDrawUsage));
+    g.setIndex(new THREE.BufferAttribute(gridIndex(su, sv), 1));
+    if (coloured)
+      g.setAttribute("color", new THREE.BufferAttribute(surfaceColours(mode), 3).setUsage(THREE.DynamicDrawUsage));
+    if (surfaceMesh) { world.remove(surfaceMesh); surfaceMesh.geometry.dispose(); }
+    surfaceMesh = new THREE.Mesh(g, mat);
+    world.add(surfaceMesh);
+    surfaceKind = kind;
+  }
   buildNet();
 }
 
@@ -218,26 +283,36 @@ function buildPoints() {
 function moveDrawnPoint(row, index, p) {
   const k = firstOfRow[row] + index;
   const q = p.map((x, a) => x - centre[a]);
+  // Only the changed vertices are sent to the GPU (10^4 points are 360 kB with their lines).
   const pos = pointsObj.geometry.attributes.position;
   pos.setXYZ(k, q[0], q[1], q[2]);
+  pos.addUpdateRange(3 * k, 3);
   pos.needsUpdate = true;
   const lp = rowLines.geometry.attributes.position;
   const seg = firstOfRow[row] - row + index - 1;  // the segment ending at this point
-  if (index > 0) lp.setXYZ(2 * seg + 1, q[0], q[1], q[2]);
-  if (index + 1 < rows[row].length) lp.setXYZ(2 * (seg + 1), q[0], q[1], q[2]);
+  if (index > 0) { lp.setXYZ(2 * seg + 1, q[0], q[1], q[2]); lp.addUpdateRange(3 * (2 * seg + 1), 3); }
+  if (index + 1 < rows[row].length) { lp.setXYZ(2 * (seg + 1), q[0], q[1], q[2]); lp.addUpdateRange(3 * (2 * seg + 2), 3); }
   lp.needsUpdate = true;
 }
 
+// A marker: one point drawn on top, its buffer moved in place.
 function markerAt(obj, p, colour, size) {
-  if (obj) world.remove(obj);
-  if (!p) return null;
-  const g = new THREE.BufferGeometry();
-  g.setAttribute("position", new THREE.Float32BufferAttribute(p.map((x, a) => x - centre[a]), 3));
-  const m = new THREE.Points(g, new THREE.PointsMaterial({
-    size, sizeAttenuation: false, color: colour, depthTest: false, transparent: true, opacity: 0.9 }));
-  m.renderOrder = 2;
-  world.add(m);
-  return m;
+  if (!obj) {
+    const g = new THREE.BufferGeometry();
+    g.setAttribute("position", new THREE.BufferAttribute(new Float32Array(3), 3));
+    obj = new THREE.Points(g, new THREE.PointsMaterial({
+      size, sizeAttenuation: false, color: colour, depthTest: false, transparent: true, opacity: 0.9 }));
+    obj.renderOrder = 2;
+    obj.frustumCulled = false;
+    world.add(obj);
+  }
+  obj.visible = !!p;
+  if (p) {
+    const a = obj.geometry.attributes.position;
+    a.setXYZ(0, p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]);
+    a.needsUpdate = true;
+  }
+  return obj;
 }
 
 function updateMarkers() {
@@ -249,27 +324,42 @@ function updateMarkers() {
 const g4 = (x) => (Math.abs(x) >= 1e4 || (Math.abs(x) < 1e-3 && x !== 0) ? x.toExponential(3) : x.toPrecision(4));
 const vec = (p) => `${g4(p[0])}, ${g4(p[1])}, ${g4(p[2])}`;
 
+// The report's cells are made once and only their changed texts set: on software GL a page
+// whose layout changes is re-rastered in the same process that draws the view.
+const setText = (el, text) => { if (el.textContent !== text) el.textContent = text; };
+const setClass = (el, name) => { if (el.className !== name) el.className = name; };
+let reportCells = null;
 function showReport() {
   const r = state.report, d = state.deviation;
   const used = d.used === null ? "∞" : (100 * d.used).toFixed(1);
-  $("report").innerHTML = `<table>
-    <tr><td>control points</td><td>${r.control_points[0]} × ${r.control_points[1]} (degree ${r.degree[0]} × ${r.degree[1]})</td></tr>
-    <tr><td>points</td><td>${r.points} in ${r.rows} rows</td></tr>
-    <tr><td>max deviation</td><td>${vec(d.max)}</td></tr>
-    <tr><td>T</td><td>${vec(d.tolerance)}</td></tr>
-    <tr><td>used</td><td class="${d.within ? "within" : "out"}">${used}% of T: ${d.within ? "within T" : "NOT within T"}</td></tr>
-    <tr><td>worst point</td><td>row ${r.worst.row}, point ${r.worst.index} (red)</td></tr>
-    <tr><td>parameters</td><td>${r.parameters}; ${r.solves} solves, ${(1000 * r.seconds).toFixed(2)} ms</td></tr></table>`;
-  const s = $("status");
-  if (!d.within) { s.className = "status bad"; s.textContent = "NOT within T: see the worst point"; }
-  else if (state.final) {
-    s.className = "status";
-    s.textContent = `final surface: fewest control points, every point checked (max ${used}% of T)`;
-  } else {
-    s.className = "status quick";
-    s.textContent = `quick refit at the current counts (every point checked, max ${used}% of T); the final one follows when you pause`;
+  if (!reportCells) {
+    const names = ["control points", "points", "max deviation", "T", "used", "worst point", "parameters"];
+    $("report").innerHTML = "<table>" + names.map((n) => `<tr><td>${n}</td><td></td></tr>`).join("") + "</table>";
+    reportCells = Array.from($("report").querySelectorAll("tr td:nth-child(2)"));
   }
-  $("depths").textContent = `${state.undo} undo, ${state.redo} redo`;
+  const c = reportCells;
+  setText(c[0], `${r.control_points[0]} × ${r.control_points[1]} (degree ${r.degree[0]} × ${r.degree[1]})`);
+  setText(c[1], `${r.points} in ${r.rows} rows`);
+  setText(c[2], vec(d.max));
+  setText(c[3], vec(d.tolerance));
+  setText(c[4], `${used}% of T: ${d.within ? "within T" : "NOT within T"}`);
+  setClass(c[4], d.within ? "within" : "out");
+  setText(c[5], `row ${r.worst.row}, point ${r.worst.index} (red)`);
+  setText(c[6], `${r.parameters}; ${r.solves} solves, ${(1000 * r.seconds).toFixed(2)} ms`);
+  const s = $("status");
+  if (!d.within && !state.final) {
+    setClass(s, "status quick over");
+    setText(s, `quick refit at the current counts, every point checked: ${used}% of T, over T at the worst point; ` +
+      "the final fit (more control points where needed) follows when you pause");
+  } else if (!d.within) { setClass(s, "status bad"); setText(s, "NOT within T: see the worst point"); }
+  else if (state.final) {
+    setClass(s, "status");
+    setText(s, `final surface: fewest control points, every point checked (max ${used}% of T)`);
+  } else {
+    setClass(s, "status quick");
+    setText(s, `quick refit at the current counts (every point checked, max ${used}% of T); the final one follows when you pause`);
+  }
+  setText($("depths"), `${state.undo} undo, ${state.redo} redo`);
 }
 
 function showOptions() {
@@ -305,8 +395,9 @@ function applyState(st, job) {
   hook.applyMs = performance.now() - t0;
   needsRender = true;
   if (job && job.t !== undefined)
-    frameWaiters.push((now) => hook.latencies.push({ ms: now - job.t, final: st.final, phase: job.phase,
-      wait: job.sent - job.t, request: job.received - job.sent, apply: performance.now() - job.received }));
+    frameWaiters.push((now, start, drawn) => hook.latencies.push({ t: job.t, ms: now - job.t, final: st.final,
+      phase: job.phase, wait: job.sent - job.t, request: job.received - job.sent, server: 1000 * st.report.seconds,
+      apply: now - job.received, slot: t0 - job.received, js: start - t0, draw: drawn - start, show: now - drawn }));
 }
 
 function message(text, good = false) {
@@ -322,26 +413,33 @@ async function pump() {
   if (inFlight || !pending) return;
   const job = pending; pending = null; inFlight = true;
   job.sent = performance.now();
+  let st = null;
   try {
-    const st = await api.edit({ op: "move", row: job.row, index: job.index, to: job.to,
+    st = await api.edit({ op: "move", row: job.row, index: job.index, to: job.to,
       phase: job.phase, seq: ++seq }, job.phase !== "drag");
     job.received = performance.now();
-    if (!st.skipped) applyState(st, job);
-    job.applied = performance.now();
     message("");
   } catch (e) {
     message(e.message);
     if (job.phase !== "drag") refresh();
   }
   inFlight = false;
+  needsRender = true;
+  // The newest position goes out at once, while this answer is drawn.
   if (pending) pump();
-  else if (drag && job.phase === "drag") {
+  if (st && !st.skipped) {
+    if (job.phase === "drag") {  // drawn now, or when the frame before is done, if still the newest
+      incoming = { st, job };
+      frame();
+    }
+    else applyState(st, job);
+  }
+  if (!inFlight && !pending && drag && job.phase === "drag") {
     clearTimeout(restTimer);
     restTimer = setTimeout(() => {  // the hand rests: the full search, a fine tessellation
       if (drag && !pending) queueMove({ ...drag.last, phase: "rest" });
-    }, 250);
+    }, hook.restMs);
   }
-  hook.idle = !inFlight && !pending && !drag;
 }
 
 async function refresh() { applyState(await api.getState(true)); }
@@ -408,17 +506,23 @@ renderer.domElement.addEventListener("pointerdown", (e) => {
   renderer.domElement.setPointerCapture(e.pointerId);
   e.preventDefault();
 });
-renderer.domElement.addEventListener("pointermove", (e) => {
+// pointerrawupdate where the browser has it: Chromium delivers pointermove only with the next
+// animation frame, the raw event as soon as the hand moves.
+const moveEvent = "onpointerrawupdate" in window ? "pointerrawupdate" : "pointermove";
+renderer.domElement.addEventListener(moveEvent, (e) => {
   if (!drag) return;
   const to = dragTarget(e);
   if (!to) return;
   rows[drag.row][drag.index] = to;  // the point follows the hand at once
   moveDrawnPoint(drag.row, drag.index, to);
   drag.last = { row: drag.row, index: drag.index, to };
+  hook.moves.push(e.timeStamp);
   clearTimeout(restTimer);
   queueMove({ ...drag.last, phase: "drag", t: e.timeStamp });
   updateMarkers();
-  needsRender = true;
+  // Drawn with the refit of this step (or a newer one), whose answer comes next: a frame of
+  // the moved point alone would only delay that one on a software rasteriser.
+  if (!inFlight) needsRender = true;
 });
 function endDrag(e) {
   if (!drag) return;
@@ -521,7 +625,10 @@ hook.nextFrame = () => new Promise((res) => { frameWaiters.push(res); needsRende
 
 resize();
 requestAnimationFrame(loop);
-refresh().then(() => { hook.ready = true; hook.idle = true; }, (e) => {
+// Nothing sent, in flight or waiting to be drawn, and the last frame drawn.
+Object.defineProperty(hook, "idle", {
+  get: () => hook.ready && !inFlight && !pending && !drag && !incoming && !optInFlight && !needsRender && !drawing });
+refresh().then(() => { hook.ready = true; }, (e) => {
   $("status").className = "status bad";
   $("status").textContent = "cannot reach the server: " + e.message;
 });

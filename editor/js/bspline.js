@@ -85,63 +85,109 @@ export function sampleCounts(surface, perSpan, max) {
   return [c(spansU), c(spansV)];
 }
 
-/// Grid of su x sv samples: positions (less `centre`, for float precision), unit normals, mean and Gaussian curvature, and the
-/// (u, v) of each sample.
-export function tessellate(surface, su, sv, centre = [0, 0, 0]) {
-  const [p, q] = surface.degree;
-  const cp = surface.control_points;
-  const nu = cp.length, nv = cp[0].length;
-  const U = samplesOf(surface.knots_u, p, nu, su);
-  const V = samplesOf(surface.knots_v, q, nv, sv);
-  const count = su * sv;
-  const position = new Float32Array(3 * count), normal = new Float32Array(3 * count);
-  const mean = new Float32Array(count), gauss = new Float32Array(count);
-  const uv = new Float64Array(2 * count);
-  const d = new Float64Array(18);  // S, Su, Sv, Suu, Suv, Svv
-  for (let i = 0; i < su; i++) {
-    const A = U[i];
-    for (let j = 0; j < sv; j++) {
-      const B = V[j];
-      d.fill(0);
+/// Tessellates surfaces on an su x sv grid of samples, evenly spaced in (u, v). The basis
+/// functions and their derivatives at the samples depend only on the degrees, the knots and
+/// the sample counts, which a drag at fixed control-point counts does not change: they are
+/// computed once and kept, and each surface costs only the contraction with its control
+/// points. Output arrays are reused while the grid keeps its size (for buffers updated in
+/// place). Positions are less `centre` (float precision), normals unit length; mean curvature
+/// only when asked for.
+export class Tessellator {
+  constructor() {
+    this.key = "";
+    this.out = null;
+  }
+
+  /// { su, sv, position, normal, mean (or null), uv }; the arrays are this tessellator's own and
+  /// are overwritten by the next call.
+  run(surface, su, sv, centre = [0, 0, 0], curvature = false) {
+    const [p, q] = surface.degree;
+    const cp = surface.control_points;
+    const nu = cp.length, nv = cp[0].length;
+    const key = `${p},${q},${su},${sv}|${surface.knots_u.join(",")}|${surface.knots_v.join(",")}`;
+    if (key !== this.key) {
+      this.key = key;
+      this.U = samplesOf(surface.knots_u, p, nu, su);
+      this.V = samplesOf(surface.knots_v, q, nv, sv);
+      this.rows = new Float64Array(9 * nv);  // one u sample: S, Su, Suu along each column
+    }
+    const count = su * sv;
+    if (!this.out || this.out.su !== su || this.out.sv !== sv) {
+      const uv = new Float64Array(2 * count);
+      for (let i = 0; i < su; i++)
+        for (let j = 0; j < sv; j++) { uv[2 * (i * sv + j)] = this.U[i].t; uv[2 * (i * sv + j) + 1] = this.V[j].t; }
+      this.out = { su, sv, position: new Float32Array(3 * count), normal: new Float32Array(3 * count), mean: null, uv };
+    }
+    const out = this.out;
+    if (curvature && !out.mean) out.mean = new Float32Array(count);
+    const { position, normal } = out;
+    const mean = curvature ? out.mean : null;
+    const R = this.rows;
+    const d = new Float64Array(18);  // S, Su, Sv, Suu, Suv, Svv
+    for (let i = 0; i < su; i++) {
+      const A = this.U[i], a0 = A.ders[0], a1 = A.ders[1], a2 = A.ders[2];
+      // Contract along u first: for each column l, the curve's point and u-derivatives.
+      R.fill(0);
       for (let k = 0; k <= p; k++) {
-        const row = cp[A.span - p + k];
-        const a0 = A.ders[0][k], a1 = A.ders[1][k], a2 = A.ders[2][k];
-        for (let l = 0; l <= q; l++) {
-          const P = row[B.span - q + l];
-          const b0 = B.ders[0][l], b1 = B.ders[1][l], b2 = B.ders[2][l];
-          const w = [a0 * b0, a1 * b0, a0 * b1, a2 * b0, a1 * b1, a0 * b2];
-          for (let m = 0; m < 6; m++) {
-            d[3 * m] += w[m] * P[0]; d[3 * m + 1] += w[m] * P[1]; d[3 * m + 2] += w[m] * P[2];
-          }
+        const row = cp[A.span - p + k], w0 = a0[k], w1 = a1[k], w2 = a2[k];
+        for (let l = 0; l < nv; l++) {
+          const P = row[l], o = 9 * l;
+          R[o] += w0 * P[0]; R[o + 1] += w0 * P[1]; R[o + 2] += w0 * P[2];
+          R[o + 3] += w1 * P[0]; R[o + 4] += w1 * P[1]; R[o + 5] += w1 * P[2];
+          if (curvature) { R[o + 6] += w2 * P[0]; R[o + 7] += w2 * P[1]; R[o + 8] += w2 * P[2]; }
         }
       }
-      const idx = i * sv + j;
-      position[3 * idx] = d[0] - centre[0];
-      position[3 * idx + 1] = d[1] - centre[1];
-      position[3 * idx + 2] = d[2] - centre[2];
-      const su_ = [d[3], d[4], d[5]], sv_ = [d[6], d[7], d[8]];
-      let n = [su_[1] * sv_[2] - su_[2] * sv_[1], su_[2] * sv_[0] - su_[0] * sv_[2],
-        su_[0] * sv_[1] - su_[1] * sv_[0]];
-      const len = Math.hypot(n[0], n[1], n[2]);
-      if (len > 0) n = n.map((x) => x / len);
-      normal[3 * idx] = n[0]; normal[3 * idx + 1] = n[1]; normal[3 * idx + 2] = n[2];
-      const dot = (x, o) => x[0] * d[o] + x[1] * d[o + 1] + x[2] * d[o + 2];
-      const E = dot(su_, 3), F = dot(su_, 6), G = dot(sv_, 6);
-      const L = dot(n, 9), M = dot(n, 12), N = dot(n, 15);
-      const det = E * G - F * F;
-      mean[idx] = det > 0 && len > 0 ? (E * N - 2 * F * M + G * L) / (2 * det) : 0;
-      gauss[idx] = det > 0 && len > 0 ? (L * N - M * M) / det : 0;
-      uv[2 * idx] = A.t; uv[2 * idx + 1] = B.t;
+      for (let j = 0; j < sv; j++) {
+        const B = this.V[j], b0 = B.ders[0], b1 = B.ders[1], b2 = B.ders[2];
+        d.fill(0);
+        for (let l = 0; l <= q; l++) {
+          const o = 9 * (B.span - q + l), w0 = b0[l], w1 = b1[l], w2 = b2[l];
+          for (let c = 0; c < 3; c++) {
+            const r0 = R[o + c], r1 = R[o + 3 + c];
+            d[c] += w0 * r0;       // S
+            d[3 + c] += w0 * r1;   // Su
+            d[6 + c] += w1 * r0;   // Sv
+            if (curvature) {
+              d[9 + c] += w0 * R[o + 6 + c];  // Suu
+              d[12 + c] += w1 * r1;           // Suv
+              d[15 + c] += w2 * r0;           // Svv
+            }
+          }
+        }
+        const idx = i * sv + j, o3 = 3 * idx;
+        position[o3] = d[0] - centre[0];
+        position[o3 + 1] = d[1] - centre[1];
+        position[o3 + 2] = d[2] - centre[2];
+        let nx = d[4] * d[8] - d[5] * d[7], ny = d[5] * d[6] - d[3] * d[8], nz = d[3] * d[7] - d[4] * d[6];
+        const len = Math.hypot(nx, ny, nz);
+        if (len > 0) { nx /= len; ny /= len; nz /= len; }
+        normal[o3] = nx; normal[o3 + 1] = ny; normal[o3 + 2] = nz;
+        if (curvature) {
+          const E = d[3] * d[3] + d[4] * d[4] + d[5] * d[5];
+          const F = d[3] * d[6] + d[4] * d[7] + d[5] * d[8];
+          const G = d[6] * d[6] + d[7] * d[7] + d[8] * d[8];
+          const L = nx * d[9] + ny * d[10] + nz * d[11];
+          const M = nx * d[12] + ny * d[13] + nz * d[14];
+          const N = nx * d[15] + ny * d[16] + nz * d[17];
+          const det = E * G - F * F;
+          mean[idx] = det > 0 && len > 0 ? (E * N - 2 * F * M + G * L) / (2 * det) : 0;
+        }
+      }
     }
+    // A degenerate normal (a pole) takes its neighbour's.
+    for (let idx = 0; idx < count; idx++) {
+      if (normal[3 * idx] || normal[3 * idx + 1] || normal[3 * idx + 2]) continue;
+      const o = idx + sv < count ? idx + sv : idx - sv;
+      const s = o >= 0 && o < count ? o : idx;
+      for (let c = 0; c < 3; c++) normal[3 * idx + c] = normal[3 * s + c];
+    }
+    return out;
   }
-  // A degenerate normal (a pole) takes its neighbour's.
-  for (let idx = 0; idx < count; idx++) {
-    if (normal[3 * idx] || normal[3 * idx + 1] || normal[3 * idx + 2]) continue;
-    const o = idx + sv < count ? idx + sv : idx - sv;
-    const s = o >= 0 && o < count ? o : idx;
-    for (let c = 0; c < 3; c++) normal[3 * idx + c] = normal[3 * s + c];
-  }
-  return { su, sv, position, normal, mean, gauss, uv };
+}
+
+/// Grid of su x sv samples, in fresh arrays (Tessellator, with mean curvature).
+export function tessellate(surface, su, sv, centre = [0, 0, 0]) {
+  return new Tessellator().run(surface, su, sv, centre, true);
 }
 
 /// S(u, v) at one parameter pair.

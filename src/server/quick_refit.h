@@ -7,9 +7,11 @@
 
 namespace sfit::server {
 
-/// Options for refitting at the counts of `last` (the last full fit's report): the search
-/// takes the row and column counts as the answer (one solve per curve; a count that does
-/// not hold is searched as kFast), with the parameter rule that fit chose.
+/// Options for refitting at the counts of `last` (the last full fit's report), with the
+/// parameter rule that fit chose: where the surface search made it, its pair (nu, nv) solved
+/// once by least squares (FitOptions::counts, FitNorm::kL2; the result may miss T and says
+/// so); where the two stages made it, their row and column counts taken as the answer (one
+/// solve per curve; a count that does not hold is searched as kFast).
 FitOptions quick_refit_options(const FitOptions& full, const FitReport& last);
 
 }  // namespace sfit::server

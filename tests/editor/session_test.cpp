@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
+#include <vector>
 
 #include "quick_refit.h"
 #include "sfit/error.h"
@@ -37,11 +39,11 @@ TEST(QuickRefitOptions, TakeTheLastCountsAndTheRuleThatFitChose) {
     const FitResult full = fit_surface(d.rows, d.options);
     const FitOptions q = quick_refit_options(d.options, full.report);
     if (full.report.method == FitMethod::kSurface) {
-      // The search's pair, solved once.
+      // The search's pair, solved once by least squares.
       ASSERT_TRUE(q.counts.has_value());
       EXPECT_EQ((*q.counts)[0], full.report.count_u);
       EXPECT_EQ((*q.counts)[1], full.report.count_v);
-      EXPECT_EQ(q.norm, full.report.norm);
+      EXPECT_EQ(q.norm, FitNorm::kL2);
     } else {
       EXPECT_EQ(q.method, FitMethod::kSfit01);
       EXPECT_EQ(q.search, CountSearch::kKnown);
@@ -53,6 +55,44 @@ TEST(QuickRefitOptions, TakeTheLastCountsAndTheRuleThatFitChose) {
     EXPECT_EQ(q.tolerance, d.options.tolerance);
     // At unchanged data the quick refit is the full fit's surface.
     test::expect_same_surface(fit_surface(d.rows, q), full);
+  }
+}
+
+// Terrain-like grids (the editor benchmark's shape): the surface search makes their fits, by
+// minimax at 15 x 20 points, by least squares at 30 x 30.
+Data terrain(int M, int N) {
+  const auto f = [](double s, double t) {
+    return Point(
+        100 * s, 100 * t,
+        10 * std::sin(3 * s) * std::cos(2 * t) + 5 * s * t * t + 0.5 * std::sin(17 * s + 11 * t));
+  };
+  Data d{test::sample_rows(f, std::vector<int>(M, N)), {}};
+  d.options.tolerance = relative_tolerance(d.rows, 1e-3);
+  return d;
+}
+
+TEST(QuickRefitOptions, TheSearchsPairSolvedOnceByLeastSquares) {
+  for (const auto& [M, N, norm] :
+       {std::tuple{15, 20, FitNorm::kLinf}, std::tuple{30, 30, FitNorm::kL2}}) {
+    const Data d = terrain(M, N);
+    const FitResult full = fit_surface(d.rows, d.options);
+    ASSERT_EQ(full.report.method, FitMethod::kSurface);
+    ASSERT_EQ(full.report.norm, norm);
+    const FitOptions q = quick_refit_options(d.options, full.report);
+    ASSERT_TRUE(q.counts.has_value());
+    EXPECT_EQ(q.norm, FitNorm::kL2);
+    const FitResult quick = fit_surface(d.rows, q);
+    EXPECT_EQ(quick.report.count_u, full.report.count_u);
+    EXPECT_EQ(quick.report.count_v, full.report.count_v);
+    EXPECT_EQ(quick.report.norm, FitNorm::kL2);
+    EXPECT_EQ(quick.report.points, d.rows.total_points());  // every point checked
+    // Its report tells the truth about T, checked by an independent evaluation.
+    const Point dev = test::reference_deviation(quick, d.rows);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(dev[a], quick.report.max_deviation[a], 1e-9);
+    EXPECT_EQ(quick.report.within_tolerance,
+              (dev.array() <= d.options.tolerance.array() * (1 + 1e-9)).all());
+    // Where the full fit is least squares, the quick refit of unchanged data is that fit.
+    if (norm == FitNorm::kL2) test::expect_same_surface(quick, full);
   }
 }
 
