@@ -53,7 +53,8 @@ TEST(SeamAlignment, SourceIndexCoversEveryPointOnce) {
   EXPECT_EQ(source_index(RowSeam{6, true}, 7, 0), 6u);  // an open reversed row
 }
 
-// Rings of equal point count rotated and reversed come back to the first ring's order exactly.
+// Rings of equal point count rotated and reversed come back to the order the original rings
+// are aligned to, exactly: whole shifts, the same seam point in every ring.
 TEST(SeamAlignment, RecoversShiftsAndDirections) {
   const Rows rows = test::fuselage_like();
   Rows equal;  // every ring with 40 points, so whole-index shifts are exact
@@ -66,32 +67,58 @@ TEST(SeamAlignment, RecoversShiftsAndDirections) {
     }
     equal.add_row(p);
   }
-  Rows scrambled = test::rotated_copy(equal, 7, true);
-  // Row 0 as given: the surface follows its start.
-  std::vector<Point> first(equal[0].begin(), equal[0].end());
-  Rows input;
-  input.add_row(first);
-  for (std::size_t j = 1; j < scrambled.size(); ++j) input.add_row(scrambled[j]);
-  const RowAlignment a = align_rows(input, true, SeamMode::kAlign, OrientMode::kAuto);
-  const Rows aligned = apply_alignment(input, a);
-  EXPECT_EQ(aligned.points(), equal.points());
+  const RowAlignment original = align_rows(equal, true, SeamMode::kAlign, OrientMode::kAuto);
+  const Rows scrambled = test::rotated_copy(equal, 7, true);
+  const RowAlignment a = align_rows(scrambled, true, SeamMode::kAlign, OrientMode::kAuto);
+  EXPECT_EQ(apply_alignment(scrambled, a).points(), apply_alignment(equal, original).points());
   int reversed = 0;
-  for (const RowSeam& s : a.rows) reversed += s.reversed;
+  for (const RowSeam& s : a.rows) {
+    reversed += s.reversed;
+    EXPECT_EQ(s.offset, 0.0);
+  }
   EXPECT_EQ(reversed, static_cast<int>(rows.size()) / 2);
+  // The seams lie on the first ring's point farthest from its box's centre (of the two ends
+  // of the ellipse's long axis, the one the next ring's points line up with as well).
+  const std::size_t seam = source_index(original.rows[0], 40, 0);
+  EXPECT_TRUE(seam == 10 || seam == 30) << seam;
+  for (const RowSeam& s : original.rows) EXPECT_EQ(s.shift, original.rows[0].shift);
   // Keep + keep touches nothing; align + keep only shifts.
-  EXPECT_TRUE(align_rows(input, true, SeamMode::kKeep, OrientMode::kKeep).identity());
-  for (const RowSeam& s : align_rows(input, true, SeamMode::kAlign, OrientMode::kKeep).rows)
+  EXPECT_TRUE(align_rows(scrambled, true, SeamMode::kKeep, OrientMode::kKeep).identity());
+  for (const RowSeam& s : align_rows(scrambled, true, SeamMode::kAlign, OrientMode::kKeep).rows)
     EXPECT_FALSE(s.reversed);
 }
 
-// Rows that correspond keep their order (the blade does not: its sharpest trailing edge corner
-// is one point past the start of its row, and every seam moves onto it).
+// Rows that correspond and start at the seam alignment's own point keep their order: the wing
+// (its trailing edge, the sharpest corner, starts every row), sections whose first points are
+// where the symmetric section's farthest points tie (a torus-like tube of regular polygons),
+// the ship's open stations; and rows aligned once are not moved again (the ragged rings keep
+// their fractional seams).
 TEST(SeamAlignment, CorrespondingRowsAreKept) {
   const Rows wing = test::load_rows(test::example("d150_wing.rows"));
   EXPECT_TRUE(align_rows(wing, true, SeamMode::kAlign, OrientMode::kAuto).identity());
-  for (const Rows& rows :
-       {test::teapot_handle_like(), test::teapot_spout_like(), test::fuselage_like()})
-    EXPECT_TRUE(align_rows(rows, true, SeamMode::kAlign, OrientMode::kAuto).identity());
+  const Rows torus = test::sample_rows(
+      [](double s, double t) {
+        const double a = 2 * 3.14159265358979323846 * s, r = 0.5 + 0.1 * t;
+        return Point(2 + r * std::cos(a), 3 * t, r * std::sin(a));
+      },
+      std::vector<int>(12, 20), true);
+  EXPECT_TRUE(align_rows(torus, true, SeamMode::kAlign, OrientMode::kAuto).identity());
+  for (const Rows& rows : {test::teapot_handle_like(), test::teapot_spout_like(),
+                           test::fuselage_like(), test::teapot_body_like()}) {
+    const RowAlignment once = align_rows(rows, true, SeamMode::kAlign, OrientMode::kAuto);
+    const RowAlignment twice =
+        align_rows(apply_alignment(rows, once), true, SeamMode::kAlign, OrientMode::kAuto);
+    for (std::size_t j = 0; j < rows.size(); ++j) {
+      // The seam where it was: once's offset past point 0 (half a spacing past one point is
+      // half a spacing before the next).
+      const double n = static_cast<double>(rows[j].size());
+      double d =
+          static_cast<double>(twice.rows[j].shift) + twice.rows[j].offset - once.rows[j].offset;
+      d -= n * std::floor(d / n + 0.5);
+      EXPECT_NEAR(d, 0.0, 1e-3) << j;
+      EXPECT_FALSE(twice.rows[j].reversed) << j;
+    }
+  }
   const Rows ship = test::load_rows(test::example("ship_px121_stations.rows"));
   EXPECT_TRUE(align_rows(ship, false, SeamMode::kAlign, OrientMode::kAuto).identity());
 }
@@ -99,6 +126,7 @@ TEST(SeamAlignment, CorrespondingRowsAreKept) {
 struct ClosedSet {
   const char* name;
   Rows (*make)();
+  double fraction = 1e-3;  // of the data's diagonal (the big blade's dense gap costs minutes)
 };
 Rows wing() {
   return test::load_rows(test::example("d150_wing.rows"));
@@ -106,8 +134,24 @@ Rows wing() {
 Rows blade() {
   return test::load_rows(test::example("iea3p4mw_blade_ragged9.rows"));
 }
+Rows big_blade() {
+  return test::load_rows(test::example("iea15mw_blade_af50.rows"));
+}
+Rows ring_body() {
+  return test::load_rows(test::example("ring_body.rows"));
+}
+Rows bent_tube() {
+  return test::load_rows(test::example("bent_tube.rows"));
+}
+Rows spout_tube() {
+  return test::load_rows(test::example("spout_tube.rows"));
+}
 const ClosedSet kClosed[] = {{"d150_wing", wing},
                              {"iea3p4mw_blade_ragged9", blade},
+                             {"iea15mw_blade_af50", big_blade, 1e-2},
+                             {"ring_body", ring_body},
+                             {"bent_tube", bent_tube},
+                             {"spout_tube", spout_tube},
                              {"teapot_body_like", test::teapot_body_like},
                              {"teapot_handle_like", test::teapot_handle_like},
                              {"teapot_spout_like", test::teapot_spout_like},
@@ -117,16 +161,11 @@ class RotatedSections : public ::testing::TestWithParam<std::tuple<ClosedSet, bo
 
 // The must-show: rotated (and every other reversed) copies fit to the same surface as the
 // originals, within 5 T on dense samples between the rows, with at most 10 % more control
-// points; with --seam keep the same copies give another surface.
-TEST_P(RotatedSections, FitTheSameSurface) {
-  const auto [set, reverse] = GetParam();
+// points, by either method; with --seam keep the same copies give another surface.
+void expect_same_surface_from_copies(const ClosedSet& set, bool reverse, FitMethod method) {
   const Rows rows = set.make();
-  // The two-stage method: its counts follow the aligned rows closely. The default surface
-  // search can find far fewer control points on rows whose seams lie exactly on one meridian
-  // than on rotated copies aligned to a fraction of a spacing (DefaultSearchOnRotatedCopies).
-  FitOptions o = closed_options(rows);
-  o.method = FitMethod::kSfit01;
-  o.parametrization = Parametrization::kPaper;
+  FitOptions o = closed_options(rows, set.fraction);
+  o.method = method;
   const double T = o.tolerance.x();
   const FitResult original = fit_surface(rows, o);
   ASSERT_TRUE(original.report.within_tolerance);
@@ -134,10 +173,11 @@ TEST_P(RotatedSections, FitTheSameSurface) {
     const Rows copy = test::rotated_copy(rows, seed, reverse);
     const FitResult f = fit_surface(copy, o);
     ASSERT_TRUE(f.report.within_tolerance);
-    ASSERT_EQ(f.report.seams.size(), rows.size());
     const double gap = test::surface_gap(original, f);
     EXPECT_LE(gap, 5 * T) << set.name << " seed " << seed << ": " << gap / T << " T";
-    EXPECT_LE(control_points(f), 1.1 * control_points(original)) << set.name << " seed " << seed;
+    EXPECT_LE(control_points(f), 1.1 * control_points(original))
+        << set.name << " seed " << seed << ": " << f.surface.count_u << " x " << f.surface.count_v
+        << " against " << original.surface.count_u << " x " << original.surface.count_v;
     // The check measured the original points of the copy at their u.
     const DeviationCheck c =
         check_deviation(f.surface, copy, f.u, f.v, o.tolerance, f.report.roundoff);
@@ -149,31 +189,24 @@ TEST_P(RotatedSections, FitTheSameSurface) {
       keep.orient = OrientMode::kKeep;
       const FitResult k = fit_surface(copy, keep);
       EXPECT_TRUE(k.report.seams.empty());
-      std::printf("%s%s: aligned %.2f T (%ld control points, original %ld), as given %.1f T\n",
-                  set.name, reverse ? " reversed" : "", gap / T, control_points(f),
-                  control_points(original), test::surface_gap(original, k) / T);
+      std::printf("%s%s, %s: aligned %.2f T (%ld control points, original %ld), as given %.1f T\n",
+                  set.name, reverse ? " reversed" : "", std::string(to_string(method)).c_str(),
+                  gap / T, control_points(f), control_points(original),
+                  test::surface_gap(original, k) / T);
     }
   }
 }
 
-// The default surface search on the same copies: every point within T, the surface within
-// 5 T of the original's, and never more control points than the two stages on the copy.
-TEST_P(RotatedSections, DefaultSearchOnRotatedCopies) {
+// The two-stage method at the paper's parameters.
+TEST_P(RotatedSections, FitTheSameSurface) {
   const auto [set, reverse] = GetParam();
-  const Rows rows = set.make();
-  const FitOptions o = closed_options(rows);
-  const double T = o.tolerance.x();
-  const FitResult original = fit_surface(rows, o);
-  ASSERT_TRUE(original.report.within_tolerance);
-  const Rows copy = test::rotated_copy(rows, 1u, reverse);
-  const FitResult f = fit_surface(copy, o);
-  ASSERT_TRUE(f.report.within_tolerance);
-  EXPECT_LE(test::surface_gap(original, f), 5 * T) << set.name;
-  FitOptions two = o;
-  two.method = FitMethod::kSfit01;
-  EXPECT_LE(control_points(f), control_points(fit_surface(copy, two))) << set.name;
-  std::printf("%s%s: default on the copy %ld control points (original %ld)\n", set.name,
-              reverse ? " reversed" : "", control_points(f), control_points(original));
+  expect_same_surface_from_copies(set, reverse, FitMethod::kSfit01);
+}
+
+// The default surface search (its positions measured from the fractional seams).
+TEST_P(RotatedSections, DefaultSearchFitsTheSameSurface) {
+  const auto [set, reverse] = GetParam();
+  expect_same_surface_from_copies(set, reverse, FitOptions{}.method);
 }
 
 INSTANTIATE_TEST_SUITE_P(Sets, RotatedSections,
@@ -182,6 +215,29 @@ INSTANTIATE_TEST_SUITE_P(Sets, RotatedSections,
                            return std::string(std::get<0>(info.param).name) +
                                   (std::get<1>(info.param) ? "_reversed" : "");
                          });
+
+// The IEA 15 MW blade at 1e-3 (50 sections of 199 and 200 points; its round root sections
+// once drifted by 4 spacings against the trailing edges, and the copies needed 64 x 43 control
+// points against 45 x 43): its copies get the original's counts by either method (the dense
+// gap at this tolerance, 1.3 T and 0.9 T, is measured in docs/seams.md, not here: minutes).
+TEST(RotatedSections, BigBladeCopiesKeepTheCountsAtFineTolerance) {
+  const Rows rows = big_blade();
+  for (FitMethod method : {FitMethod::kSfit01, FitOptions{}.method}) {
+    FitOptions o = closed_options(rows, 1e-3);
+    o.method = method;
+    const FitResult original = fit_surface(rows, o);
+    ASSERT_TRUE(original.report.within_tolerance);
+    for (bool reverse : {false, true})
+      for (std::uint32_t seed : {1u, 2u}) {
+        const FitResult f = fit_surface(test::rotated_copy(rows, seed, reverse), o);
+        EXPECT_TRUE(f.report.within_tolerance);
+        EXPECT_LE(control_points(f), 1.1 * control_points(original))
+            << to_string(method) << " seed " << seed << (reverse ? " reversed" : "") << ": "
+            << f.surface.count_u << " x " << f.surface.count_v << " against "
+            << original.surface.count_u << " x " << original.surface.count_v;
+      }
+  }
+}
 
 // Open rows: every other one reversed is found and flipped back: the same surface bit for bit.
 TEST(RowOrientation, ReversedOpenRowsGiveTheSameSurface) {

@@ -1,7 +1,7 @@
 // Seam alignment of closed rows and orientation of open rows (docs/seams.md): before the curve
 // stage, each row's start point and direction are chosen to match its neighbour, so that
 // sections which start anywhere and run either way round give the surface of sections that
-// start at corresponding points. The surface follows the first row's start and direction.
+// start at corresponding points. The seams move onto a point of the data's own (align_rows()).
 #pragma once
 
 #include <cstddef>
@@ -66,11 +66,18 @@ struct RowAlignment {
 /// Chooses each row's start and direction (closed rows: `seam` picks the start, `orient` the
 /// direction; open rows: `orient` only). Row j is matched against row j-1 as aligned (rows of
 /// fewer than 3 points, or whose points all coincide, are kept and skipped as references):
-/// both are resampled at 64 equal fractions from their start, centred, and the
-/// start and direction minimising the sum of squared distances between samples of equal
-/// fraction win, searched over every original point as start. The given start and direction
-/// are kept unless another is better by more than 2 %, so rows that already correspond keep
-/// their order bit for bit. An open row is reversed when that halves the distance.
+/// both are taken as curves through their points (cubic Hermite), sampled at 64 equal
+/// fractions from their start and centred, and the start and direction minimising the sum of
+/// squared distances between samples of equal fraction win, searched over every original
+/// point as start and refined between its neighbours (RowSeam::offset). A row with as many
+/// points as its reference keeps the reference's offset (the rows correspond point by point).
+/// The given start is kept where the best lies within 1e-3 of a spacing of it. Then every
+/// seam moves by the same fraction of its row's points onto a point of the data's own, so
+/// that rotated and reversed copies of the rows get the same seams: the sharpest corner of any
+/// row (a turn of more than 86 degrees, a trailing edge), else the first row's point farthest
+/// from the centre of its bounding box (ties: the one nearest to a point of the next row, then
+/// the row's first point, then the lexicographically smallest). The surface follows the first
+/// row's direction. An open row is reversed when that halves the distance.
 /// Fractions are those `rule` gives the points along the row (normalized_positions()): equal
 /// steps in the point's index for the paper's rule, uniform and fewest (the paper's parameters
 /// are, so the surface joins points of equal index fraction), chord-length or centripetal

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "aligned_fit.h"
 #include "sfit/parametrization.h"
@@ -11,9 +12,14 @@ namespace sfit {
 namespace {
 
 constexpr int kSamples = 64;          // equal arc-length samples compared per row
-constexpr double kKeepSlack = 1.02;   // the given order wins unless 2 % worse than the best
+constexpr double kKeepSlack = 1.02;   // the given direction wins unless 2 % worse than the other
+constexpr double kKeepOffset = 1e-3;  // the given start wins within this fraction of a spacing
 constexpr double kFlipRatio = 0.5;    // an open row is reversed when that halves the cost
-constexpr double kCornerAngle = 1.5;  // radians: a turn this sharp is a corner (an edge)
+constexpr double kTie = 1e-9;         // distances this close (relative) are equal
+constexpr std::size_t kTieWork = 1 << 22;  // distances compared to break ties, at most
+constexpr double kRoundoffOffset = 1e-9;   // seam offsets below this are rounding: 0
+constexpr int kGoldenSteps = 56;           // a bracket of 2 spacings to 4e-12 of one
+constexpr double kCornerAngle = 1.5;       // radians: a turn this sharp is a corner (an edge)
 
 // A row as a polyline parametrised by the positions the fit gives its points (index
 // fractions for the paper's rule, chord-length fractions for chord, ...): closed rows wrap.
@@ -47,8 +53,29 @@ struct Polyline {
         at.begin());
     i = i == 0 ? 0 : std::min(i - 1, segments - 1);
     const double len = at[i + 1] - at[i];
-    const double w = len > 0 ? std::clamp((s - at[i]) / len, 0.0, 1.0) : 0.0;
-    return (1 - w) * p[i] + w * p[(i + 1) % n];
+    if (!(len > 0)) return p[i];
+    const double w = std::clamp((s - at[i]) / len, 0.0, 1.0);
+    // Cubic Hermite with finite-difference (Catmull-Rom) tangents: rows sampled from smooth
+    // sections of different point counts then match at fractions of a spacing far better
+    // than their polylines (whose chords sag differently).
+    auto point = [&](long k) {
+      return p[static_cast<std::size_t>((k % long(n) + long(n)) % long(n))];
+    };
+    auto pos = [&](long k) {
+      const long nn = static_cast<long>(n);
+      const long wraps = k >= 0 ? k / nn : -((-k + nn - 1) / nn);
+      return at[static_cast<std::size_t>(k - wraps * nn)] + static_cast<double>(wraps);
+    };
+    const long a = static_cast<long>(i), b = a + 1;
+    auto tangent = [&](long k) -> Point {
+      long lo = k - 1, hi = k + 1;
+      if (!closed) lo = std::max(lo, 0L), hi = std::min(hi, static_cast<long>(n) - 1);
+      const double dt = pos(hi) - pos(lo);
+      return dt > 0 ? Point((point(hi) - point(lo)) / dt) : Point::Zero();
+    };
+    const double w2 = w * w, w3 = w2 * w;
+    return (2 * w3 - 3 * w2 + 1) * point(a) + (w3 - 2 * w2 + w) * len * tangent(a) +
+           (-2 * w3 + 3 * w2) * point(b) + (w3 - w2) * len * tangent(b);
   }
 };
 
@@ -88,8 +115,28 @@ struct Choice {
   double start = 0;  // position of the aligned row's start on the original polyline
 };
 
+// The distance between positions a and b of a closed row (wrapped, 0 ... 1/2).
+double wrapped(double a, double b) {
+  double d = a - b;
+  return std::fabs(d - std::floor(d + 0.5));
+}
+
+// The position of the seam `offset` point spacings past point i of closed row `line`, in the
+// aligned direction (RowSeam::offset).
+double position_of(const Polyline& line, std::size_t i, double offset, bool reversed) {
+  const std::size_t n = line.p.size();
+  const double next = line.at[i + 1] - line.at[i];
+  const double prev = line.at[i] - (i > 0 ? line.at[i - 1] : line.at[n - 1] - 1.0);
+  const double ahead = offset * ((offset >= 0) == !reversed ? next : prev);
+  return reversed ? line.at[i] - ahead : line.at[i] + ahead;
+}
+
+RowSeam seam_at(const Polyline& line, double s, bool reversed);
+
+// `follow`: the row has as many points as the reference row, whose seam lies *follow point
+// spacings past its first point; this row's seam then lies as far past one of its points.
 Choice align_closed(const Polyline& line, const std::vector<Point>& ref, bool shifts,
-                    bool directions) {
+                    bool directions, const double* follow) {
   const std::size_t n = line.p.size();
   const double keep = cost(samples(line, 0.0, false), ref);
   // Coarse: cyclic shifts of the row's own samples, both ways.
@@ -110,49 +157,65 @@ Choice align_closed(const Polyline& line, const std::vector<Point>& ref, bool sh
         coarse_back = back != 0;
       }
     }
-  // Fine: every original point within 1.5 coarse steps of the coarse start, that direction.
+  // Fine: every original point within 1.5 coarse steps of the coarse start, and the points
+  // on either side of it (a row of fewer points than samples), that direction.
   const double centre = line.total * coarse_shift / kSamples;
   const double reach = 1.5 * line.total / kSamples;
   RowSeam best;
   double best_cost = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
-    double d = std::fabs(line.at[i] - centre);
-    d = std::min(d, line.total - d);
-    if (shifts ? d > reach : i != 0) continue;
+    const double next = line.at[i + 1] - line.at[i];
+    const double prev = line.at[i] - (i > 0 ? line.at[i - 1] : line.at[n - 1] - 1.0);
+    if (shifts ? wrapped(line.at[i], centre) > std::max({reach, next, prev}) : i != 0) continue;
     const double c = cost(samples(line, line.at[i], coarse_back), ref);
     if (c < best_cost) {
       best_cost = c;
       best = RowSeam{static_cast<long>(i), coarse_back};
     }
   }
-  if (!(keep > kKeepSlack * best_cost)) return Choice{};
-  const std::size_t i = static_cast<std::size_t>(best.shift);
-  Choice out{best, line.at[i]};
-  if (!shifts) return out;
-  // A fractional start between the neighbouring points (golden section on the cost), given as
-  // the fraction of a point spacing the aligned row's start lies past its first point.
-  const double before =
-      line.at[i] - (i == 0 ? line.at[n] - line.at[n - 1] : line.at[i] - line.at[i - 1]);
-  const double after = line.at[i + 1];
-  auto at = [&](double s) { return cost(samples(line, s, best.reversed), ref); };
-  double a = before, b = after;
-  constexpr double g = 0.6180339887498949;
-  double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = at(x1), f2 = at(x2);
-  for (int it = 0; it < 24; ++it) {
-    if (f1 < f2) {
-      b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = at(x1);
-    } else {
-      a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = at(x2);
-    }
+  if (!shifts) {
+    // The direction only: the given one unless the other is better by more than 2 %.
+    if (!(keep > kKeepSlack * best_cost)) return Choice{};
+    return Choice{best, 0.0};
   }
-  const double s = f1 < f2 ? x1 : x2;
-  if (!(std::min(f1, f2) < best_cost)) return out;
-  out.start = s;
-  // Past the first point in the aligned row's direction, in that point spacing.
-  const double ahead = best.reversed ? line.at[i] - s : s - line.at[i];
-  const double spacing = (ahead >= 0) == !best.reversed ? after - line.at[i] : line.at[i] - before;
-  out.seam.offset = spacing > 0 ? ahead / spacing : 0.0;
-  return out;
+  // A fractional start between the neighbouring points (golden section on the cost).
+  const std::size_t i = static_cast<std::size_t>(best.shift);
+  double s = line.at[i];
+  {
+    const double before =
+        line.at[i] - (i == 0 ? line.at[n] - line.at[n - 1] : line.at[i] - line.at[i - 1]);
+    const double after = line.at[i + 1];
+    auto at = [&](double x) { return cost(samples(line, x, best.reversed), ref); };
+    double a = before, b = after;
+    constexpr double g = 0.6180339887498949;
+    double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = at(x1), f2 = at(x2);
+    for (int it = 0; it < kGoldenSteps; ++it) {
+      if (f1 < f2) {
+        b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = at(x1);
+      } else {
+        a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = at(x2);
+      }
+    }
+    if (std::min(f1, f2) < best_cost) s = f1 < f2 ? x1 : x2;
+  }
+  RowSeam seam = seam_at(line, s, best.reversed);
+  if (follow) {
+    // Rows of equal counts correspond point by point (sections from one sampling): the seam
+    // keeps the reference row's fraction of a spacing, past the point that puts it nearest.
+    RowSeam pick = seam;
+    double d_best = 2;
+    for (long k : {seam.shift - 1, seam.shift, seam.shift + 1}) {
+      const std::size_t kk = static_cast<std::size_t>((k % static_cast<long>(n) + n) % n);
+      const double d = wrapped(position_of(line, kk, *follow, best.reversed), s);
+      if (d < d_best) d_best = d, pick = RowSeam{static_cast<long>(kk), best.reversed, *follow};
+    }
+    seam = pick;
+  }
+  // The given start and direction stay where the best start is within a small fraction of a
+  // spacing of them, so rows that already correspond are fitted bit for bit as before.
+  if (seam.shift == 0 && !seam.reversed && std::fabs(seam.offset) < kKeepOffset) return Choice{};
+  return Choice{
+      seam, position_of(line, static_cast<std::size_t>(seam.shift), seam.offset, seam.reversed)};
 }
 
 struct Corner {
@@ -171,6 +234,41 @@ Corner sharpest(const Polyline& line) {
     if (angle > c.angle) c = Corner{angle, i};
   }
   return c;
+}
+
+// The point of a row farthest from the centre of the row's bounding box: a function of the
+// row's points, not of their order. Distances within kTie of the farthest are equal (a
+// symmetric section); of those, the one nearest to a point of `next` (the next row: a regular
+// polygon's points are all equally far, and the one its neighbour's points line up with wins),
+// then the row's first point if it is still one of them, so rows that already start there are
+// kept, else the lexicographically smallest.
+std::size_t farthest(std::span<const Point> p, std::span<const Point> next) {
+  Point lo = p[0], hi = p[0];
+  for (const Point& q : p) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  const Point centre = 0.5 * (lo + hi);
+  double far = 0;
+  for (const Point& q : p) far = std::max(far, (q - centre).norm());
+  std::vector<std::size_t> tied;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if ((p[i] - centre).norm() >= far * (1 - kTie)) tied.push_back(i);
+  if (tied.size() > 1 && !next.empty() && tied.size() * next.size() <= kTieWork) {
+    std::vector<double> near(tied.size(), std::numeric_limits<double>::infinity());
+    double nearest = near[0];
+    for (std::size_t t = 0; t < tied.size(); ++t) {
+      for (const Point& q : next) near[t] = std::min(near[t], (q - p[tied[t]]).norm());
+      nearest = std::min(nearest, near[t]);
+    }
+    std::vector<std::size_t> closest;
+    for (std::size_t t = 0; t < tied.size(); ++t)
+      if (near[t] <= nearest + kTie * far) closest.push_back(tied[t]);
+    tied = std::move(closest);
+  }
+  if (tied.front() == 0) return 0;
+  std::size_t best = tied.front();
+  for (std::size_t i : tied)
+    if (std::tie(p[i].x(), p[i].y(), p[i].z()) < std::tie(p[best].x(), p[best].y(), p[best].z()))
+      best = i;
+  return best;
 }
 
 // The seam at position s (wrapped) of a closed row: the nearest point and the offset past it.
@@ -229,9 +327,12 @@ RowAlignment align_rows(const Rows& rows, bool closed_u, SeamMode seam, OrientMo
   const bool directions = orient == OrientMode::kAuto;
   if (!shifts && !directions) return a;
   std::vector<Point> ref;  // samples of the last usable row as aligned
-  std::vector<double> starts(rows.size(), 0.0);
   Corner corner;
   std::size_t corner_row = 0;
+  std::size_t first = rows.size();  // the first usable row
+  std::vector<char> aligned(rows.size(), 0);
+  std::size_t ref_points = 0;  // points of the reference row, and its seam's offset
+  double ref_offset = 0;
   for (std::size_t j = 0; j < rows.size(); ++j) {
     const auto row = rows[j];
     if (!usable(row)) continue;
@@ -240,7 +341,8 @@ RowAlignment align_rows(const Rows& rows, bool closed_u, SeamMode seam, OrientMo
     Choice c;
     if (!ref.empty()) {
       if (closed_u) {
-        c = align_closed(line, ref, shifts, directions);
+        c = align_closed(line, ref, shifts, directions,
+                         row.size() == ref_points ? &ref_offset : nullptr);
       } else {
         const double forwards = cost(samples(line, 0, false), ref);
         const double backwards = cost(samples(line, 0, true), ref);
@@ -249,9 +351,12 @@ RowAlignment align_rows(const Rows& rows, bool closed_u, SeamMode seam, OrientMo
       }
     }
     a.rows[j] = c.seam;
+    aligned[j] = 1;
+    if (first == rows.size()) first = j;
     ref = samples(line, c.start, c.seam.reversed);
+    ref_points = row.size();
+    ref_offset = c.seam.offset;
     if (shifts) {
-      starts[j] = c.start;
       const Corner k = sharpest(line);
       if (k.angle > corner.angle) {
         corner = k;
@@ -259,20 +364,40 @@ RowAlignment align_rows(const Rows& rows, bool closed_u, SeamMode seam, OrientMo
       }
     }
   }
-  // A sharp corner (a trailing edge) anywhere: every seam moves by the same fraction onto it,
-  // so the knots meet the corner the same way whichever point the first row starts at.
-  if (shifts && corner.angle > kCornerAngle) {
-    const std::size_t j = corner_row;
-    const Polyline line(rows[j], true, rule);
-    double phi =
-        a.rows[j].reversed ? starts[j] - line.at[corner.index] : line.at[corner.index] - starts[j];
+  // Every seam moves by the same fraction of its row's points onto a point that depends on the
+  // rows' points only, not on where or which way round they are given, so rotated and reversed
+  // copies of the rows fit the same surface: the sharpest corner of any row (a trailing edge),
+  // so the knots meet it the same way, or else the point of the first row farthest from its
+  // box's centre. Fractions of the points (not of the rule's positions), so every rule moves
+  // the seams alike.
+  if (shifts && first < rows.size()) {
+    std::size_t after = first + 1;  // the next usable row
+    while (after < rows.size() && !aligned[after]) ++after;
+    std::size_t j = first,
+                index = farthest(rows[first],
+                                 after < rows.size() ? rows[after] : std::span<const Point>());
+    if (corner.angle > kCornerAngle) j = corner_row, index = corner.index;
+    // Seams as index positions: point shift + offset, forwards along the original points.
+    auto at_index = [](const RowSeam& seam) {
+      return static_cast<double>(seam.shift) + (seam.reversed ? -seam.offset : seam.offset);
+    };
+    const RowSeam& ref_seam = a.rows[j];
+    const double nj = static_cast<double>(rows[j].size());
+    double phi = (ref_seam.reversed ? at_index(ref_seam) - static_cast<double>(index)
+                                    : static_cast<double>(index) - at_index(ref_seam)) /
+                 nj;
     phi -= std::floor(phi + 0.5);  // (-1/2, 1/2]
     if (phi != 0)
       for (std::size_t r = 0; r < rows.size(); ++r) {
-        if (!usable(rows[r])) continue;
-        const Polyline l(rows[r], true, rule);
-        if (!(l.total > 0) || !std::isfinite(l.total)) continue;
-        a.rows[r] = seam_at(l, starts[r] + (a.rows[r].reversed ? -phi : phi), a.rows[r].reversed);
+        if (!aligned[r]) continue;
+        RowSeam& seam = a.rows[r];
+        const double n = static_cast<double>(rows[r].size());
+        const double x = at_index(seam) + (seam.reversed ? -phi : phi) * n;
+        const double whole = std::floor(x + 0.5);
+        double offset = seam.reversed ? whole - x : x - whole;
+        if (std::fabs(offset) < kRoundoffOffset) offset = 0;
+        const long nn = static_cast<long>(rows[r].size());
+        seam = RowSeam{((static_cast<long>(whole) % nn) + nn) % nn, seam.reversed, offset};
       }
   }
   return a;
