@@ -158,7 +158,11 @@ int run_fit(const FitArgs& a) {
       say(fmt::format(
           "warning: the surface folds back on itself by {} between rows ({}); "
           "meshes and offsets of it will fail",
-          g(r.fold), o.fold_guard ? "no rule across the rows avoided it" : "--no-fold-guard"));
+          g(r.fold),
+          o.fold_guard ? (o.degree_v > 1 ? "no rule across the rows avoided it; a lower degree "
+                                           "across them (--degree-v) may"
+                                         : "no rule across the rows avoided it")
+                       : "--no-fold-guard"));
   }
   if (!r.within_tolerance)
     throw Error(
