@@ -44,7 +44,6 @@ PairChoice search_pairs(const PairRange& r, long bound, PairOracle& holds) {
     bool exact;
   };
   std::map<int, Step> f;
-  // The smallest nu at nv below min(cap, (best - 1) / nv), or nothing.
   // A lower bound on the smallest nu at nv: the exact f of the nearest larger nv searched (f
   // is non-increasing), else min_u.
   auto lower_at = [&](int nv) {
@@ -52,6 +51,7 @@ PairChoice search_pairs(const PairRange& r, long bound, PairOracle& holds) {
       if (it->second.exact) return std::max(r.min_u, it->second.f);
     return r.min_u;
   };
+  // The smallest nu at nv below min(cap, (best - 1) / nv), or nothing.
   auto column = [&](int nv, int cap) {
     const int lo = lower_at(nv);
     if (static_cast<long>(lo) * nv >= best_size) return;

@@ -53,7 +53,10 @@ struct PairChoice {
 /// in either direction fails (stop "minimal").
 /// For nv along a geometric sequence, and then every nv between two of them whose bound on the
 /// product can still beat the best, the smallest nu that holds (bisection below the previous
-/// nv's, and below bound / nv).
+/// nv's, and below bound / nv). A column is skipped where even the exact smallest nu of a
+/// larger nv times this nv cannot beat the best; it starts at the largest affordable nu
+/// (PairRange::affordable), and steps down from a top pair that holds T at every point but
+/// fails a guard (factor 0.8) until one holds or misses T at the points.
 PairChoice search_pairs(const PairRange& range, long bound, PairOracle& holds);
 
 /// From a pair that holds under `oracle`, steps to (nu - 1, nv) or (nu, nv - 1) while either
