@@ -120,6 +120,11 @@ int run_fit(const FitArgs& a) {
           : fmt::format(" (rows need {}..{}, columns {}..{})", *rmin, *rmax, *cmin, *cmax);
   say(fmt::format("surface {} x {} control points{}; {} parameters", r.count_u, r.count_v, stages,
                   to_string(r.parametrization)));
+  if (r.degree_v != o.degree_v)
+    say(
+        fmt::format("degree across the rows {} (asked: {}): at {} the surface folded back on "
+                    "itself under every rule across them (--no-fold-guard keeps it)",
+                    r.degree_v, o.degree_v, o.degree_v));
   if (r.method == FitMethod::kSurface || o.method == FitMethod::kSurface)
     say(fmt::format("method {} ({} norm, {} pairs tried): {}", to_string(r.method),
                     to_string(r.norm), r.pairs_tried, r.stop_reason));

@@ -118,6 +118,25 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
   }
   across_.reset();
   valid_ = false;  // update() refits in full
+  if (!best && o_.degree_v > 1) {
+    // No rule across the rows avoided the fold: one degree lower across them. A cubic across
+    // unevenly spaced rows overshoots between them (the ragged 3.4 MW blade dips 4.2 cm below
+    // its root section at 9 x 9 rows and control points); a quadratic there does not. The
+    // report's degree says so, and the CLI; --no-fold-guard keeps the degree asked for.
+    FitOptions lower = o_;
+    --lower.degree_v;
+    SurfaceFitter f(lower);
+    f.row_seam_offsets_ = row_seam_offsets_;
+    try {
+      FitResult c = f.fit_rule(rows, requested);
+      if (c.report.within_tolerance && !folds(c) && stays_near_the_data(c.surface, box_)) {
+        c.report.seconds = now() - t0;
+        return c;
+      }
+    } catch (const Error& e) {
+      if (e.code() != ErrorCode::kToleranceNotMet) throw;
+    }
+  }
   if (!best) {
     rule_ = used;
     r.report.seconds = now() - t0;
