@@ -103,8 +103,9 @@ void add_fit_option_flags(CLI::App* c, FitOptionArgs& a) {
   c->add_option("--orient", a.orient,
                 "auto (default: a row running against its neighbour is reversed) or keep");
   c->add_flag("--no-fold-guard", a.no_fold_guard,
-              "keep a surface that folds between rows (with --seam keep --orient keep: the "
-              "paper's scheme exactly)");
+              "keep a surface that folds between rows, at the degree asked for (the guard "
+              "tries other rules across the rows, then one degree lower across them; with "
+              "--seam keep --orient keep: the paper's scheme exactly)");
   c->add_option("--rerepresent", a.rerepresent,
                 "where --method sfit01's re-representation samples each row curve: paper "
                 "(default) or arc_length (equal arc length, open rows)");
