@@ -6,6 +6,7 @@
 #include "sfit/io/rows_reader.h"
 #include "sfit/surface_fit.h"
 #include "synthetic.h"
+#include "tensor_lsq.h"
 
 namespace sfit::bench {
 namespace {
@@ -62,6 +63,30 @@ void BM_FitRagged(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(fit_surface(rows, o));
   state.SetItemsProcessed(state.iterations() * static_cast<long>(rows.total_points()));
 }
+// One least-squares solve of the surface search on ragged rows at the chord rule (tensor_lsq.h):
+// conjugate gradients with the Kronecker preconditioner (kron_pcg.h) against the sparse
+// Cholesky factorisation alone. Args: points, nu = nv, iterative (1) or factorised (0).
+void BM_TensorSolveRagged(benchmark::State& state) {
+  const int n = static_cast<int>(std::sqrt(static_cast<double>(state.range(0))));
+  const Rows rows = ragged(n, n);
+  detail::TensorSpec spec;
+  spec.rule = Parametrization::kChord;
+  spec.iterative = state.range(2) != 0;
+  detail::TensorProblem prob(rows, spec);
+  const int c = static_cast<int>(state.range(1));
+  Surface s;
+  prob.solve(c, c, s);  // the moments at nu, cached as in the search
+  for (auto _ : state) benchmark::DoNotOptimize(prob.solve(c, c, s));
+}
+BENCHMARK(BM_TensorSolveRagged)
+    ->Args({10000, 20, 1})
+    ->Args({10000, 20, 0})
+    ->Args({10000, 40, 1})
+    ->Args({10000, 40, 0})
+    ->Args({100000, 60, 1})
+    ->Args({100000, 60, 0})
+    ->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_FitRagged)
     ->Arg(10000)
     ->Arg(100000)

@@ -376,6 +376,7 @@ bool TensorProblem::solve(int nu, int nv, Surface& out) {
                             band_matrix(hs.data(), nv, wv, spec_.closed_v), x);
   }
   if (solved) {
+    // x is CG's
   } else if (cost(nu, nv) < kSimplicialFlops) {
     // Small systems: Eigen's simplicial factorisation. CHOLMOD's supernodal one starts
     // OpenMP threads and BLAS calls whose overhead was a third of a volcano fit at 1e-3.
