@@ -70,8 +70,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Surface& s = r.surface;
   if (s.control.size() != static_cast<std::size_t>(s.count_u) * s.count_v)
     fuzz::finding("control array does not match the counts");
-  if (s.count_u < (o.closed_u ? 1 : o.degree_u + 1) ||
-      s.count_v < (o.closed_v ? 1 : o.degree_v + 1))
+  // The fold guard may lower the degree across the rows by one (docs/seams.md), never along.
+  if (s.degree_u != o.degree_u || s.degree_v > o.degree_v || s.degree_v < o.degree_v - 1 ||
+      s.degree_v < 1)
+    fuzz::finding("a degree other than the one asked for (or one less across the rows)");
+  if (s.count_u < (o.closed_u ? 1 : s.degree_u + 1) ||
+      s.count_v < (o.closed_v ? 1 : s.degree_v + 1))
     fuzz::finding("fewer control points than an order");
   for (const Point& p : s.control)
     if (!p.allFinite()) fuzz::finding("a non-finite control point");

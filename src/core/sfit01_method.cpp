@@ -125,6 +125,7 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
     // report's degree says so, and the CLI; --no-fold-guard keeps the degree asked for.
     FitOptions lower = o_;
     --lower.degree_v;
+    lower.fold_guard = false;  // one step down, no further (each step is a whole fit)
     SurfaceFitter f(lower);
     f.row_seam_offsets_ = row_seam_offsets_;
     try {
