@@ -118,15 +118,15 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
   }
   across_.reset();
   valid_ = false;  // update() refits in full
-  if (!best && o_.degree_v > 1) {
+  if (!best && o_.degree_v > 1 && !degree_lowered_) {
     // No rule across the rows avoided the fold: one degree lower across them. A cubic across
     // unevenly spaced rows overshoots between them (the ragged 3.4 MW blade dips 4.2 cm below
     // its root section at 9 x 9 rows and control points); a quadratic there does not. The
     // report's degree says so, and the CLI; --no-fold-guard keeps the degree asked for.
     FitOptions lower = o_;
     --lower.degree_v;
-    lower.fold_guard = false;  // one step down, no further (each step is a whole fit)
     SurfaceFitter f(lower);
+    f.degree_lowered_ = true;  // one step down, no further (each step is a whole fit)
     f.row_seam_offsets_ = row_seam_offsets_;
     try {
       FitResult c = f.fit_rule(rows, requested);

@@ -73,6 +73,7 @@ class SurfaceFitter {
   std::size_t rows_refitted_ = 0;
   std::vector<double> row_seam_offsets_;   // fractional seams of the rows being fitted
   std::optional<Parametrization> across_;  // the fold guard's rule across the rows
+  bool degree_lowered_ = false;            // the fold guard's fit one degree lower across
 };
 
 }  // namespace sfit::detail
