@@ -53,6 +53,16 @@ bool same_positions(const Rows& rows, const std::vector<double>& positions) {
       return false;
   return true;
 }
+// `out` as the surface of `spec` at (nu, nv), its control points still to be filled.
+void shape(Surface& out, const TensorSpec& spec, int nu, int nv) {
+  out.degree_u = spec.degree_u;
+  out.degree_v = spec.degree_v;
+  out.periodic_u = spec.closed_u;
+  out.periodic_v = spec.closed_v;
+  out.count_u = nu;
+  out.count_v = nv;
+  out.control.resize(static_cast<std::size_t>(nu) * nv);
+}
 }  // namespace
 
 std::vector<double> positions_across(const Rows& rows, const std::vector<double>& positions_u,
@@ -207,9 +217,9 @@ const TensorProblem::Moments& TensorProblem::moments(int nu) {
     const auto weights = rows_.row_weights(j);
     for (int k = 0; k < n; ++k) {
       const int f = eval_basis(p, nu, spec_.closed_u, t[k], b.data());
-      if (!weights.empty())
-        for (int a = 0; a < w; ++a) b[a] *= std::sqrt(weights[k]);
       const double scale = weights.empty() ? 1.0 : std::sqrt(weights[k]);
+      if (!weights.empty())
+        for (int a = 0; a < w; ++a) b[a] *= scale;
       for (int a = 0; a < w; ++a) {
         const int i = wrap_index(f + a, nu);
         R[i] += (scale * b[a]) * row[k];
@@ -290,13 +300,7 @@ bool TensorProblem::solve_separable(int nu, int nv, Surface& out) {
   if (gv.info() != Eigen::Success) return false;
   const Eigen::MatrixXd X = gv.solve(rhs);  // X(l, 3i + a)
   if (!X.allFinite()) return false;
-  out.degree_u = pu;
-  out.degree_v = pv;
-  out.periodic_u = spec_.closed_u;
-  out.periodic_v = spec_.closed_v;
-  out.count_u = nu;
-  out.count_v = nv;
-  out.control.resize(static_cast<std::size_t>(nu) * nv);
+  shape(out, spec_, nu, nv);
   for (int i = 0; i < nu; ++i)
     for (int l = 0; l < nv; ++l)
       out.at(i, l) = Point(X(l, 3 * i), X(l, 3 * i + 1), X(l, 3 * i + 2));
@@ -315,22 +319,27 @@ bool TensorProblem::solve(int nu, int nv, Surface& out) {
   std::vector<double> st(n * wu * sv, 0.0);
   Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(n), 3);
   std::array<double, kMaxDegree + 1> bv;
-  // The Kronecker preconditioner's factors (kron_pcg.h): Gbar = sum_j G_j / sum_j s_j and
-  // H_s = sum_j s_j b_v b_v^T, s_j = trace(G_j).
-  std::vector<double> gbar(static_cast<std::size_t>(nu) * wu, 0.0),
-      hs(static_cast<std::size_t>(nv) * wv, 0.0);
+  // The Kronecker preconditioner's factors (kron_pcg.h), where CG is tried: Gbar = sum_j G_j /
+  // sum_j s_j and H_s = sum_j s_j b_v b_v^T, s_j = trace(G_j).
+  const bool try_cg =
+      spec_.iterative && cost(nu, nv) >= kIterativeFlops && nu <= kIterativeShare * min_points_;
+  std::vector<double> gbar(try_cg ? static_cast<std::size_t>(nu) * wu : 0, 0.0),
+      hs(try_cg ? static_cast<std::size_t>(nv) * wv : 0, 0.0);
   double s_sum = 0;
   for (std::size_t j = 0; j < rows_.size(); ++j) {
     const int fv = eval_basis(pv, nv, spec_.closed_v, v[j], bv.data());
     const double* G = &m.gram[(shared_u_ ? 0 : j) * nu * wu];
     const Point* R = &m.rhs[j * nu];
     double s_j = 0;
-    for (int i = 0; i < nu; ++i) s_j += G[i * wu];
-    for (std::size_t k = 0; k < gbar.size(); ++k) gbar[k] += G[k];
-    s_sum += s_j;
+    if (try_cg) {
+      for (int i = 0; i < nu; ++i) s_j += G[i * wu];
+      for (std::size_t k = 0; k < gbar.size(); ++k) gbar[k] += G[k];
+      s_sum += s_j;
+    }
     for (int a = 0; a < wv; ++a) {
       const int l = wrap_index(fv + a, nv);
-      for (int d = 0; a + d < wv; ++d) hs[l * wv + d] += s_j * bv[a] * bv[a + d];
+      if (try_cg)
+        for (int d = 0; a + d < wv; ++d) hs[l * wv + d] += s_j * bv[a] * bv[a + d];
       for (int i = 0; i < nu; ++i) rhs.row(i * nv + l) += bv[a] * R[i].transpose();
       for (int b = 0; b < wv; ++b) {
         const double wab = bv[a] * bv[b];
@@ -369,8 +378,7 @@ bool TensorProblem::solve(int nu, int nv, Surface& out) {
   A.setFromTriplets(trip.begin(), trip.end());
   Eigen::MatrixX3d x;
   bool solved = false;
-  if (spec_.iterative && cost(nu, nv) >= kIterativeFlops && s_sum > 0 &&
-      nu <= kIterativeShare * min_points_) {
+  if (try_cg && s_sum > 0) {
     for (double& g : gbar) g /= s_sum;
     solved = solve_kron_pcg(A, rhs, band_matrix(gbar.data(), nu, wu, spec_.closed_u),
                             band_matrix(hs.data(), nv, wv, spec_.closed_v), x);
@@ -393,13 +401,7 @@ bool TensorProblem::solve(int nu, int nv, Surface& out) {
     if (llt.info() != Eigen::Success) return false;
   }
   if (!x.allFinite()) return false;
-  out.degree_u = pu;
-  out.degree_v = pv;
-  out.periodic_u = spec_.closed_u;
-  out.periodic_v = spec_.closed_v;
-  out.count_u = nu;
-  out.count_v = nv;
-  out.control.resize(n);
+  shape(out, spec_, nu, nv);
   for (std::size_t k = 0; k < n; ++k) out.control[k] = x.row(static_cast<Eigen::Index>(k));
   return true;
 }
