@@ -65,7 +65,8 @@ install(FILES ${PROJECT_BINARY_DIR}/sfitConfig.cmake ${PROJECT_BINARY_DIR}/sfitC
         DESTINATION ${SFIT_CMAKE_DIR})
 
 # The Debian package: cmake --build build --target package  ->  build/sfit_VERSION_ARCH.deb
-# with the CLI, the libraries, the headers and the CMake package, installed under /usr.
+# with the CLI, the libraries, the headers and the CMake package, installed under /usr; where
+# the Python module is built, also the module and the FreeCAD workbench (docs/freecad.md).
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME sfit)
 set(CPACK_PACKAGE_VENDOR "the sfit developers")
@@ -85,6 +86,10 @@ endif()
 if(SFIT_EXCHANGE_CAD)
   string(APPEND _sfit_depends ", libocct-foundation-dev, libocct-modeling-data-dev"
          ", libocct-modeling-algorithms-dev, libocct-data-exchange-dev, libtbb-dev")
+endif()
+if(TARGET sfit_python)  # the Python module and the FreeCAD workbench that imports it
+  string(APPEND _sfit_depends ", python3, python3-numpy")
+  set(CPACK_DEBIAN_PACKAGE_SUGGESTS "freecad")
 endif()
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "${_sfit_depends}")
 include(CPack)
