@@ -8,12 +8,13 @@ Each source gives one or more rows, in the order of the sources:
     of its vertices;
   * a .rows/.csv (or .srows, .step/.iges sections) file: the rows sfit's own reader gives.
 
-Sampling rule (curves): each edge of a row is sampled at equal arc length, its end points
-included (so the corners of a wire are data points). The spacing h keeps the chord sag
-between neighbouring samples within the tolerance: h = sqrt(8 T / k), k the largest
-curvature found at 33 parameters on the edge, T the smallest of the per-axis tolerances;
-a straight edge gets one segment. A row gets at least 4 (degree + 1) points (spacing made
-finer evenly), an edge at most 2000 segments. A closed row (its wire closed, or its ends within
+Sampling rule (curves): one spacing h for the whole row, each edge sampled at equal arc
+length with ceil(L_edge / h) segments, its end points included (so the corners of a wire are
+data points and the samples are evenly spaced along the row). h keeps the chord sag between
+neighbouring samples within the tolerance on every edge: h = min over the edges of
+sqrt(8 T / k), k the edge's largest curvature found at 33 parameters, T the tolerance; and
+h <= the row's length / (4 (degree + 1)), so a row has at least that many segments. An edge
+gets at most 2000 segments. A closed row (its wire closed, or its ends within
 1e-9 of the size) is given without repeating its first point, and fitted closed in u.
 """
 import math
@@ -64,16 +65,26 @@ def _max_curvature(edge):
     return k
 
 
-def edge_segments(edge, tol):
-    """The number of equal-arc-length segments of an edge under the sampling rule."""
-    if edge.Length <= 0:
-        return 0
+def edge_spacing(edge, tol):
+    """The largest arc-length spacing whose chord sag on this edge stays within tol:
+    sqrt(8 tol / k), k the edge's largest curvature; infinite on a straight edge."""
     k = _max_curvature(edge)
-    if k <= 0 or tol <= 0:
-        n = 1 if k <= 0 else MAX_SEGMENTS_PER_EDGE
-    else:
-        n = math.ceil(edge.Length / math.sqrt(8.0 * tol / k))
-    return int(min(max(n, 1), MAX_SEGMENTS_PER_EDGE))
+    if k <= 0:
+        return math.inf
+    return math.sqrt(8.0 * max(tol, 0.0) / k)
+
+
+def row_segments(edges, tol, degree):
+    """Segments per edge under the sampling rule: one spacing for the whole row (the
+    smallest of its edges', and at most the row's length over 4 (degree + 1)), so the
+    samples are evenly spaced along the row, corners included."""
+    lengths = [e.Length for e in edges]
+    total = sum(lengths)
+    if total <= 0:
+        return [0] * len(edges)
+    h = min([edge_spacing(e, tol) for e in edges] + [total / (4 * (degree + 1))])
+    return [0 if L <= 0 else int(min(max(math.ceil(L / h - 1e-9), 1), MAX_SEGMENTS_PER_EDGE))
+            for L in lengths]
 
 
 def _chain(edges, counts):
@@ -106,17 +117,10 @@ def sample_edges(edges, tol, degree, closed_hint=False, fixed_segments=0):
     if fixed_segments > 0:
         counts = [fixed_segments if e.Length > 0 else 0 for e in edges]
     else:
-        counts = [edge_segments(e, tol) for e in edges]
-    total_length = sum(e.Length for e in edges)
-    size = max(total_length, 1e-300)
+        counts = row_segments(edges, tol, degree)
+    size = max(sum(e.Length for e in edges), 1e-300)
     row = _chain(edges, counts)
     closed = closed_hint or (len(row) > 2 and np.linalg.norm(row[0] - row[-1]) <= 1e-9 * size)
-    minimum = 4 * (degree + 1)
-    if fixed_segments <= 0 and len(row) - (1 if closed else 0) < minimum and total_length > 0:
-        # finer evenly: each edge's share of the minimum by its length
-        counts = [max(c, math.ceil(minimum * e.Length / total_length)) if e.Length > 0 else 0
-                  for e, c in zip(edges, counts)]
-        row = _chain(edges, counts)
     if closed:
         row = row[:-1]
     return row, closed

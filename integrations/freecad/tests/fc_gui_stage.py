@@ -72,6 +72,11 @@ def step3():
     try:
         mw = Gui.getMainWindow()
         mw.resize(1400, 860)
+        docks = [d for d in mw.findChildren(QtGui.QDockWidget) if d.isVisible() and
+                 d.findChild(QtGui.QTabWidget) is not None]  # the combo view with the panel
+        if docks:
+            mw.resizeDocks(docks[:1], [430], QtCore.Qt.Horizontal)
+        QtGui.QApplication.processEvents()
         panel = None
         for w in mw.findChildren(QtGui.QWidget):
             if w.windowTitle() == "Fit surface (sfit)":
