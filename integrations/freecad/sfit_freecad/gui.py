@@ -108,10 +108,12 @@ class ViewProviderSurfaceFit:
     def setEdit(self, vobj, mode=0):
         if mode != 0:
             return None
-        Gui.Control.showDialog(TaskPanel(vobj.Object))
+        self.panel = TaskPanel(vobj.Object)
+        Gui.Control.showDialog(self.panel)
         return True
 
     def unsetEdit(self, vobj, mode=0):
+        self.panel = None
         Gui.Control.closeDialog()
         return True
 

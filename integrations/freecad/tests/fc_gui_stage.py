@@ -59,6 +59,17 @@ def step2():
         result["deviation_switch"] = vp.switch.whichChild.getValue()
         result["worst_marker"] = list(vp.worst_coords.point[0].getValue())
         result["worst_point"] = list(obj.WorstPoint)
+        # The panel refits at once: T = 0.5 mm absolute, then back to relative (the
+        # screenshot's).
+        panel = vp.panel
+        panel.tol_abs.setValue(0.5)
+        panel.mode.setCurrentIndex(1)  # Absolute: the signal applies it
+        result["coarse"] = {"mode": obj.ToleranceMode, "T": list(obj.ToleranceUsed),
+                            "control_points": obj.ControlPoints,
+                             "within": bool(obj.WithinTolerance),
+                             "report": panel.report.text()}
+        panel.mode.setCurrentIndex(0)
+        result["fine_again"] = obj.ControlPoints
         view = Gui.ActiveDocument.ActiveView
         view.viewIsometric()
         view.fitAll()

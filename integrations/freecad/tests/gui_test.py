@@ -4,7 +4,8 @@ sfit module found through SFIT_PYTHONPATH. fc_gui_stage.py draws five ring secti
 them and runs the command "Fit surface". Checked: FreeCAD found the workbench and its command;
 the feature was made, within T; the task panel is open and shows the report; the data points
 are drawn coloured (as many as were fitted) and the worst-point marker sits on the worst
-point; a screenshot of the window (task panel and fitted face) was written.
+point; changing the tolerance in the panel refits at once and its report follows; a screenshot
+of the window (task panel and fitted face) was written.
 
     gui_test.py [--screenshot docs/freecad.png]
 
@@ -55,8 +56,8 @@ def main():
                         os.path.join(HERE, "fc_gui_stage.py")], env=env, capture_output=True,
                        text=True, timeout=240)
     res = os.path.join(out, "result_gui.json")
-    if not check(os.path.exists(res), f"FreeCAD's GUI ran the stage (exit {r.returncode}): "
-                                      f"{r.stdout[-600:]} {r.stderr[-600:]}"):
+    if not check(os.path.exists(res), "FreeCAD's GUI ran the stage"):
+        print(f"exit {r.returncode}:\n{r.stdout[-2000:]}\n{r.stderr[-2000:]}")
         sys.exit(1)
     with open(res) as f:
         g = json.load(f)
@@ -79,6 +80,13 @@ def main():
     check(g.get("worst_marker") and g.get("worst_point") and
           max(abs(a - b) for a, b in zip(g["worst_marker"], g["worst_point"])) < 1e-4,
           "the worst-point marker is at the worst point")
+    c = g.get("coarse", {})
+    check(c.get("mode") == "Absolute" and c.get("T") == [0.5, 0.5, 0.5] and c.get("within") and
+          c.get("control_points") != g.get("control_points") and
+          c.get("control_points", "?") in c.get("report", "") and
+          g.get("fine_again") == g.get("control_points"),
+          f"the panel refits at once: absolute T = 0.5 gives {c.get('control_points')}, shown "
+          f"in its report; relative again gives {g.get('fine_again')} again")
     check(os.path.exists(shot) and os.path.getsize(shot) > 20000,
           f"screenshot written: {shot} ({g.get('size')})")
     print(f"{len(failures)} failure(s)" if failures else "all checks passed")
