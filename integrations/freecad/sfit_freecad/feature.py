@@ -34,6 +34,9 @@ _PROPERTIES = [
     ("App::PropertyLinkList", "Sources", GROUP,
      "Sketches, wires, edges, B-spline curves or point objects; each curve or point row is "
      "a row of the fit, in this order", 0),
+    ("App::PropertyLinkSubList", "SourceEdges", GROUP,
+     "Edges picked on other objects (e.g. Edge3 of a solid): each edge a row, after the rows "
+     "of Sources", 0),
     ("App::PropertyFile", "SourceFile", GROUP,
      "A .rows/.csv file read by sfit's own reader; its rows come after those of Sources", 0),
     ("App::PropertyEnumeration", "ToleranceMode", GROUP,
@@ -118,6 +121,9 @@ class SurfaceFit:
 
     def onDocumentRestored(self, obj):
         obj.Proxy = self
+        for typ, name, group, doc, status in _PROPERTIES:  # added by a later version
+            if name not in obj.PropertiesList:
+                obj.addProperty(typ, name, group, doc, status)
 
     def __getstate__(self):
         return None
@@ -130,11 +136,13 @@ class SurfaceFit:
         obj.Shape = result["face"]
 
 
-def create(doc, sources=(), source_file="", name="SurfaceFit", **settings):
-    """A new SurfaceFit feature in doc with these sources; settings are property values."""
+def create(doc, sources=(), source_file="", name="SurfaceFit", edges=(), **settings):
+    """A new SurfaceFit feature in doc with these sources; edges: (object, "EdgeN") pairs;
+    settings are property values."""
     obj = doc.addObject("Part::FeaturePython", name)
     SurfaceFit(obj)
     obj.Sources = list(sources)
+    obj.SourceEdges = [(o, [sub]) for o, sub in edges]
     obj.SourceFile = source_file
     for key, value in settings.items():
         setattr(obj, key, value)
@@ -149,6 +157,11 @@ def collect_rows(obj, sfit):
         t_sample = float(obj.Tolerance.Value)
     else:
         box = rows_mod.bounding_box(sources)
+        for linked, subs in obj.SourceEdges:
+            for sub in subs:
+                sh = linked.getSubObject(sub)
+                if sh is not None and hasattr(sh, "BoundBox"):
+                    box.add(sh.BoundBox)
         diag = box.DiagonalLength if box.isValid() else 0.0
         t_sample = float(obj.ToleranceRelative) * diag
     rows, closed = [], []
@@ -156,6 +169,15 @@ def collect_rows(obj, sfit):
         r, c = rows_mod.rows_of_object(src, t_sample, degree, int(obj.SegmentsPerEdge))
         rows += r
         closed += c
+    for linked, subs in obj.SourceEdges:
+        for sub in subs:
+            edge = linked.getSubObject(sub)  # placed as in the document
+            if edge is None or edge.ShapeType != "Edge":
+                raise rows_mod.SourceError(f"{linked.Label}.{sub}: not an edge")
+            row, c = rows_mod.sample_edges([edge], t_sample, degree, edge.isClosed(),
+                                           int(obj.SegmentsPerEdge))
+            rows.append(row)
+            closed.append(c)
     if obj.SourceFile:
         if not os.path.isfile(obj.SourceFile):
             raise rows_mod.SourceError(f"SourceFile: {obj.SourceFile}: no such file")

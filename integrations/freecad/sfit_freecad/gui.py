@@ -177,7 +177,9 @@ class TaskPanel:
 
     def _load(self):
         o = self.obj
-        self.sources.setText(", ".join(s.Label for s in o.Sources) +
+        self.sources.setText(", ".join([s.Label for s in o.Sources] +
+                                       [f"{e[0].Label}.{n}" for e in o.SourceEdges
+                                        for n in e[1]]) +
                              (("; " if o.Sources else "") + os.path.basename(o.SourceFile)
                               if o.SourceFile else ""))
         self.mode.setCurrentIndex(feature.TOLERANCE_MODES.index(o.ToleranceMode))
@@ -251,15 +253,21 @@ class FitSurfaceCommand:
 
     def Activated(self):
         doc = FreeCAD.ActiveDocument
-        sel = [s.Object for s in Gui.Selection.getSelectionEx()]
+        sel, edges = [], []
+        for s in Gui.Selection.getSelectionEx():
+            subs = [n for n in s.SubElementNames if n.startswith("Edge")]
+            if subs:  # picked edges: each a row
+                edges += [(s.Object, n) for n in subs]
+            else:
+                sel.append(s.Object)
         source_file = ""
-        if not sel:
+        if not sel and not edges:
             source_file, _ = QtGui.QFileDialog.getOpenFileName(
                 Gui.getMainWindow(), "Rows of points", "", "Rows (*.rows *.srows *.csv)")
             if not source_file:
                 return
         doc.openTransaction("Fit surface")
-        obj = feature.create(doc, sel, source_file)
+        obj = feature.create(doc, sel, source_file, edges=edges)
         make_view_provider(obj)
         doc.recompute()
         doc.commitTransaction()

@@ -74,7 +74,7 @@ def deviation_record(obj, name):
             f.write("\n".join(" ".join(repr(float(c)) for c in p) for p in row) + "\n\n")
     return {"tolerance": tol, "norm_T": math.sqrt(sum(t * t for t in tol)),
             "max_dist": worst_dist, "max_axis": worst_axis, "points": len(fit.points),
-            "rows_file": rows_path, "closed": res["closed"], "options": res["options"],
+            "rows_file": rows_path, "rows_count": len(res["rows"]), "closed": res["closed"], "options": res["options"],
             "report_max": [float(x) for x in fit.report["max_deviation"]],
             "within": bool(obj.WithinTolerance), "control_points": obj.ControlPoints}
 
@@ -123,8 +123,17 @@ def stage_fit():
     c = feature.create(doc, scans, name="ScanFit", ToleranceMode="Absolute", Tolerance=0.01)
     d = feature.create(doc, [], os.path.join(job["examples"], "ship_px121_stations.rows"),
                        name="ShipFit")
+    box = doc.addObject("Part::Box", "Block")
+    box.Length, box.Width, box.Height = 30, 20, 10
+    box.Placement = App.Placement(V(100, 0, 0), App.Rotation(V(0, 0, 1), 30))
     doc.recompute()
-    for o in (a, b, c, d):
+    vertical = [f"Edge{i + 1}" for i, e in enumerate(box.Shape.Edges)
+                if abs(e.Vertexes[0].Point.z - e.Vertexes[1].Point.z) > 1]
+    e = feature.create(doc, [], name="EdgeFit", edges=[(box, n) for n in vertical],
+                       ToleranceMode="Absolute", Tolerance=0.01, Degree=2)
+    results["edge_count"] = len(vertical)
+    doc.recompute()
+    for o in (a, b, c, d, e):
         record(o.Name, o)
     before = shape_record(a)["poles"]
     results["export"] = export_record(a)
@@ -150,7 +159,7 @@ def stage_reopen():
         "User parameter:BaseApp/Preferences/Mod/Sfit").SetString("ModulePath", job["python"])
     del os.environ["SFIT_PYTHONPATH"]
     doc = App.openDocument(job["saved"])
-    names = ["RingFit", "WingFit", "ScanFit", "ShipFit"]
+    names = ["RingFit", "WingFit", "ScanFit", "ShipFit", "EdgeFit"]
     reopened = {}
     for n in names:
         o = doc.getObject(n)

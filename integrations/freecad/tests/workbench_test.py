@@ -11,6 +11,7 @@ FreeCAD's distToShape (within |T|, the Euclidean length of the per-axis T) and, 
 FreeCAD's evaluation at sfit's parameters; closed contours detected (u closed for the rings).
 A sketch edited (a radius constraint 12 -> 15) and recomputed refits: the poles change,
 every point within T again and the poles equal the CLI's for the edited rows.
+Four edges picked on a placed box (SourceEdges) are four rows.
 Stage "reopen": the saved document opened in a new freecadcmd, the module found through the
 FreeCAD parameter instead: every feature there with its proxy class and sources, its saved
 shape the one fitted, and a recompute gives the same poles.
@@ -187,7 +188,7 @@ def main():
     fit = run_stage("fit", out)
     cases = fit["cases"]
     for name, closed in (("RingFit", "u"), ("WingFit", ""), ("ScanFit", ""), ("ShipFit", ""),
-                         ("RingFit_edited", "u"), ("RingFit_moved", "u")):
+                         ("EdgeFit", ""), ("RingFit_edited", "u"), ("RingFit_moved", "u")):
         if check(name in cases, f"{name}: recorded"):
             check_case(name, cases[name], out, closed)
     for ext, x in fit.get("export", {}).items():
@@ -197,6 +198,9 @@ def main():
               f"face with its poles (largest difference {x.get('max_pole_diff')}) "
               f"{x.get('error', '')}")
     check(len(fit.get("export", {})) == 2, "exported as STEP and IGES")
+    check(fit.get("edge_count") == 4 and cases.get("EdgeFit", {}).get("rows_count") == 4,
+          f"EdgeFit: the four vertical edges picked on a placed box are four rows "
+          f"({fit.get('edge_count')}, {cases.get('EdgeFit', {}).get('rows_count')})")
     e = fit.get("edit", {})
     check(e.get("sketch_radius") == 15.0, f"the sketch's radius constraint edited to 15 "
                                           f"({e.get('sketch_radius')})")
@@ -213,7 +217,7 @@ def main():
         finish()
     again = run_stage("reopen", out, {"saved": fit["saved"]})
     final = {"RingFit": "RingFit_moved", "WingFit": "WingFit", "ScanFit": "ScanFit",
-             "ShipFit": "ShipFit"}
+             "ShipFit": "ShipFit", "EdgeFit": "EdgeFit"}
     for name, r in again.get("reopened", {}).items():
         check(r["exists"], f"reopened: {name} is in the saved document")
         check(r["proxy"] == "sfit_freecad.feature.SurfaceFit",
@@ -231,7 +235,7 @@ def main():
               not any(s in r["state"] for s in ("Invalid", "Error")),
               f"reopened: {name} recomputed refits to the same poles (within "
               f"{pole_diff(refit['poles'], before):.3g}), within T")
-    check(len(again.get("reopened", {})) == 4, "reopened: four features")
+    check(len(again.get("reopened", {})) == 5, "reopened: five features")
     install_check(out)
     shutil.rmtree(out, ignore_errors=True) if not failures else print(f"kept {out}")
     finish()
