@@ -23,7 +23,7 @@ import Part  # noqa: E402
 from sfit_freecad import feature  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from sections import closed_sections, open_sections, point_rows  # noqa: E402
+from sections import closed_sections, open_sections, point_rows, torus_sections  # noqa: E402
 
 V = App.Vector
 results = {"cases": {}, "errors": []}
@@ -132,8 +132,12 @@ def stage_fit():
     e = feature.create(doc, [], name="EdgeFit", edges=[(box, n) for n in vertical],
                        ToleranceMode="Absolute", Tolerance=0.01, Degree=2)
     results["edge_count"] = len(vertical)
+    tube = torus_sections(doc)
     doc.recompute()
-    for o in (a, b, c, d, e):
+    t = feature.create(doc, tube + tube[:1], name="TorusFit", ToleranceMode="Absolute",
+                       Tolerance=0.02)  # the first section again at the end: closed in v
+    doc.recompute()
+    for o in (a, b, c, d, e, t):
         record(o.Name, o)
     before = shape_record(a)["poles"]
     results["export"] = export_record(a)

@@ -66,3 +66,17 @@ def point_rows(doc):
         o.Points = pk
         objs.append(o)
     return objs
+
+
+def torus_sections(doc, n=8):
+    """n circles of radius 3 around the z axis at distance 10 (the sections of a torus),
+    each in its own sketch."""
+    secs = []
+    for i in range(n):
+        a = 360.0 * i / n
+        rot = App.Rotation(V(0, 0, 1), a).multiply(App.Rotation(V(1, 0, 0), 90))
+        sk = sketch(doc, f"Tube{i}", App.Placement(V(10 * math.cos(math.radians(a)),
+                                                     10 * math.sin(math.radians(a)), 0), rot))
+        sk.addGeometry(Part.Circle(V(0, 0, 0), V(0, 0, 1), 3 + 0.3 * (i % 2)))
+        secs.append(sk)
+    return secs

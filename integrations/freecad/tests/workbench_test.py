@@ -11,7 +11,8 @@ FreeCAD's distToShape (within |T|, the Euclidean length of the per-axis T) and, 
 FreeCAD's evaluation at sfit's parameters; closed contours detected (u closed for the rings).
 A sketch edited (a radius constraint 12 -> 15) and recomputed refits: the poles change,
 every point within T again and the poles equal the CLI's for the edited rows.
-Four edges picked on a placed box (SourceEdges) are four rows.
+Eight circles around an axis, the first selected again at the end, are detected closed in u
+and v. Four edges picked on a placed box (SourceEdges) are four rows.
 Stage "reopen": the saved document opened in a new freecadcmd, the module found through the
 FreeCAD parameter instead: every feature there with its proxy class and sources, its saved
 shape the one fitted, and a recompute gives the same poles.
@@ -188,7 +189,8 @@ def main():
     fit = run_stage("fit", out)
     cases = fit["cases"]
     for name, closed in (("RingFit", "u"), ("WingFit", ""), ("ScanFit", ""), ("ShipFit", ""),
-                         ("EdgeFit", ""), ("RingFit_edited", "u"), ("RingFit_moved", "u")):
+                         ("EdgeFit", ""), ("TorusFit", "uv"),
+                         ("RingFit_edited", "u"), ("RingFit_moved", "u")):
         if check(name in cases, f"{name}: recorded"):
             check_case(name, cases[name], out, closed)
     for ext, x in fit.get("export", {}).items():
