@@ -153,6 +153,20 @@ def stage_fit():
     rings[4].Placement = App.Placement(V(0, 0, 45), App.Rotation())
     doc.recompute()
     record("RingFit_moved", a)
+    # Faults: a missing file, a method the module lacks: the feature fails with a message.
+    faults = {}
+    for name, kw in (("MissingFile", {"source_file": "/nonexistent/sections.rows"}),
+                     ("NoMethod", {"sources": rings, "Method": "sfit01"})):
+        bad = feature.create(doc, name=name, **kw)
+        doc.recompute()
+        try:
+            feature.fit_feature(bad)
+            message = None
+        except Exception as e:  # noqa: BLE001
+            message = str(e)
+        faults[name] = {"state": list(bad.State), "message": message}
+        doc.removeObject(bad.Name)
+    results["faults"] = faults
     path = os.path.join(job["out"], "fitted.FCStd")
     doc.saveAs(path)
     results["saved"] = path
