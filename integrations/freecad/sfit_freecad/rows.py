@@ -89,7 +89,6 @@ def row_segments(edges, tol, degree):
 
 def _chain(edges, counts):
     """Samples a chain of edges into one polyline, each edge turned to follow the last."""
-    pts = []
     sampled = []
     for e, n in zip(edges, counts):
         if n <= 0:
