@@ -1,4 +1,5 @@
 #include "basis.h"
+#include "basis_upto.h"
 
 #include <algorithm>
 #include <array>
@@ -171,6 +172,57 @@ int eval_basis_derivatives(int degree, int count, bool periodic, double t, int n
     f *= (p - k);
   }
   return s - p;
+}
+
+int eval_basis_upto(int degree, int count, bool periodic, double t, int nderiv, double* ders) {
+  const int p = degree;
+  if (nderiv > 2) return eval_basis_derivatives(p, count, periodic, t, nderiv, ders);
+  const int first = eval_basis(p, count, periodic, t, ders);
+  if (nderiv <= 0) return first;
+  double reduced = t;
+  const int s = find_span(p, count, periodic, reduced);
+  if (!(periodic || (s >= 2 * p - 1 && s <= count - p))) {
+    std::array<double, 3 * (kMaxDegree + 1)> general;
+    eval_basis_derivatives(p, count, periodic, t, nderiv, general.data());
+    for (int k = 1; k <= nderiv; ++k)
+      for (int a = 0; a <= p; ++a) ders[k * (p + 1) + a] = general[k * (p + 1) + a];
+    return first;
+  }
+  // Uniform spacing: the basis of degrees p - 2 and p - 1 on the same span by the
+  // division-free recurrence of eval_basis().
+  const double x = reduced - (s - p);
+  std::array<double, kMaxDegree + 1> N{}, q{}, r{};
+  N[0] = 1.0;
+  if (p - 1 == 0) q[0] = 1.0;
+  if (p - 2 == 0) r[0] = 1.0;
+  for (int j = 1; j <= p - 1; ++j) {
+    double saved = 0.0;
+    const double inv = kInverse[j];
+    for (int i = 0; i < j; ++i) {
+      const double temp = N[i] * inv;
+      N[i] = saved + (i + 1 - x) * temp;
+      saved = (x + j - i - 1) * temp;
+    }
+    N[j] = saved;
+    if (j == p - 2) r = N;
+    if (j == p - 1) q = N;
+  }
+  // N_{s-p+a,p}' = q[a-1] - q[a] (q has p entries); N'' = r[a-2] - 2 r[a-1] + r[a] (p - 1).
+  double* d1 = ders + (p + 1);
+  for (int a = 0; a <= p; ++a) d1[a] = (a > 0 ? q[a - 1] : 0.0) - (a < p ? q[a] : 0.0);
+  if (nderiv >= 2) {
+    double* d2 = ders + 2 * (p + 1);
+    for (int a = 0; a <= p; ++a) {
+      if (p < 2) {
+        d2[a] = 0.0;
+        continue;
+      }
+      const double r2 = a >= 2 ? r[a - 2] : 0.0, r1 = (a >= 1 && a - 1 <= p - 2) ? r[a - 1] : 0.0,
+                   r0 = a <= p - 2 ? r[a] : 0.0;
+      d2[a] = r2 - 2.0 * r1 + r0;
+    }
+  }
+  return first;
 }
 
 }  // namespace sfit
