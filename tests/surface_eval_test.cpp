@@ -87,6 +87,8 @@ TEST(SurfaceDerivatives, EqualSurfaceDerivativesAndEvaluate) {
           EXPECT_EQ(zero[0], s.evaluate(u, v));
           for (int d = 0; d < 6; ++d) EXPECT_LE((fast[d] - ref[d]).norm(), 1e-11) << d;
           for (int d = 0; d < 3; ++d) EXPECT_EQ(one[d], fast[d]);
+          const int du[6] = {0, 1, 0, 2, 1, 0}, dv[6] = {0, 0, 1, 0, 1, 2};
+          for (int d = 0; d < 6; ++d) EXPECT_EQ(surface_partial(s, u, v, du[d], dv[d]), fast[d]);
         }
     }
 }
@@ -103,6 +105,12 @@ TEST(SurfaceDerivatives, GridEqualsPointwiseBitForBit) {
         surface_derivatives(s, bu, i, bv, j, g);
         surface_derivatives(s, u[i], v[j], order, p);
         for (int d = 0; d < derivative_count(order); ++d) EXPECT_EQ(g[d], p[d]);
+        if (order == 1) {
+          const DirectionBasis b0u = direction_basis(s, true, u, 0);
+          const DirectionBasis b0v = direction_basis(s, false, v, 0);
+          EXPECT_EQ(surface_partial(s, bu, i, b0v, j, 1, 0), p[1]);
+          EXPECT_EQ(surface_partial(s, b0u, i, bv, j, 0, 1), p[2]);
+        }
       }
   }
   Point out[6];

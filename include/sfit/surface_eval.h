@@ -23,6 +23,12 @@ inline constexpr int derivative_count(int order) {
 /// clamped or wrapped as in evaluate(). Throws Error(kUsage) for an order outside 0 ... 2.
 void surface_derivatives(const Surface& s, double u, double v, int order, Point* out);
 
+/// One partial derivative d^(du+dv) S / du^du dv^dv (du, dv >= 0, du + dv <= 2) at (u, v):
+/// the basis of each direction only to the order it needs and one sum over the control
+/// points, so S_u costs about what S does. Equals surface_derivatives()'s slot up to
+/// round-off (the same sums in the same order: bit for bit). Throws Error(kUsage) otherwise.
+Point surface_partial(const Surface& s, double u, double v, int du, int dv);
+
 /// The basis of one direction at a list of parameters, evaluated once for a grid.
 struct DirectionBasis {
   int degree = 0;
@@ -39,6 +45,10 @@ DirectionBasis direction_basis(const Surface& s, bool along_u, std::span<const d
 /// same bits as surface_derivatives(s, u_i, v_j, order, out).
 void surface_derivatives(const Surface& s, const DirectionBasis& u, std::size_t i,
                          const DirectionBasis& v, std::size_t j, Point* out);
+
+/// surface_partial() from the bases of both directions (u.order >= du, v.order >= dv).
+Point surface_partial(const Surface& s, const DirectionBasis& u, std::size_t i,
+                      const DirectionBasis& v, std::size_t j, int du, int dv);
 
 /// Curvature at a point with respect to the unit normal n = S_u x S_v / |S_u x S_v| (the
 /// orientation of Surface's normal): a surface that bends away from n has negative normal

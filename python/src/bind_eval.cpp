@@ -51,8 +51,9 @@ enum class What { kPoint, kDerivative, kNormal, kDerivatives, kCurvature };
 
 struct Request {
   What what = What::kPoint;
-  int order = 0;  // of the derivatives needed
-  int slot = 0;   // kDerivative: which of surface_derivatives()'s outputs
+  int order = 0;       // of the derivatives needed
+  int slot = 0;        // kDerivative: which of surface_derivatives()'s outputs
+  int du = 0, dv = 0;  // kDerivative: the partial derivative
   std::vector<py::ssize_t> tail;
   std::size_t width() const {
     std::size_t w = 1;
@@ -106,9 +107,15 @@ py::array evaluate(const Surface& s, py::handle u_in, py::handle v_in, bool grid
     py::gil_scoped_release nogil;
     // Each direction's basis once; every (u_i, v_j) only combines them (the same bits as a
     // pointwise evaluation).
-    const DirectionBasis bu = direction_basis(s, true, u, r.order);
-    const DirectionBasis bv = direction_basis(s, false, v, r.order);
+    const bool partial = r.what == What::kDerivative;
+    const DirectionBasis bu = direction_basis(s, true, u, partial ? r.du : r.order);
+    const DirectionBasis bv = direction_basis(s, false, v, partial ? r.dv : r.order);
     blocks(u.size() * nv, threads, [&](std::size_t k) {
+      if (partial) {
+        const Point q = surface_partial(s, bu, k / nv, bv, k % nv, r.du, r.dv);
+        std::memcpy(p + k * w, q.data(), 3 * sizeof(double));
+        return;
+      }
       Point d[6];
       surface_derivatives(s, bu, k / nv, bv, k % nv, d);
       write(r, d, p + k * w);
@@ -131,8 +138,9 @@ py::array evaluate(const Surface& s, py::handle u_in, py::handle v_in, bool grid
     const bool ub = u.size() == 1 && u_scalar, vb = v.size() == 1 && v_scalar;
     blocks(both ? 1 : n, threads, [&](std::size_t k) {
       const double uu = u[ub ? 0 : k], vv = v[vb ? 0 : k];
-      if (r.what == What::kPoint) {
-        const Point q = s.evaluate(uu, vv);
+      if (r.what == What::kPoint || r.what == What::kDerivative) {
+        const Point q =
+            r.what == What::kPoint ? s.evaluate(uu, vv) : surface_partial(s, uu, vv, r.du, r.dv);
         std::memcpy(p + k * w, q.data(), 3 * sizeof(double));
         return;
       }
@@ -150,7 +158,7 @@ Request derivative_request(int du, int dv) {
                 "derivatives of order du + dv <= 2 (du, dv >= 0), got du=" + std::to_string(du) +
                     ", dv=" + std::to_string(dv));
   static const int slot[3][3] = {{0, 2, 5}, {1, 4, -1}, {3, -1, -1}};
-  return {What::kDerivative, du + dv, slot[du][dv], {3}};
+  return {What::kDerivative, du + dv, slot[du][dv], du, dv, {3}};
 }
 
 Surface surface_from_state(py::handle state) {
@@ -230,7 +238,7 @@ void bind_surface_eval(py::class_<Surface>& c) {
   c.def(
        "__call__",
        [](const Surface& s, py::handle u, py::handle v, bool grid, int threads) {
-         return evaluate(s, u, v, grid, {What::kPoint, 0, 0, {3}}, threads);
+         return evaluate(s, u, v, grid, {What::kPoint, 0, 0, 0, 0, {3}}, threads);
        },
        py::arg("u"), py::arg("v"), py::arg("grid") = false, py::arg("threads") = 0,
        R"(S(u, v).
@@ -254,7 +262,8 @@ Raises sfit.Error for non-finite parameters or mismatched lengths.)")
             if (order < 0 || order > 2)
               usage_error("order", "0, 1 or 2, got " + std::to_string(order));
             return evaluate(s, u, v, grid,
-                            {What::kDerivatives, order, 0, {derivative_count(order), 3}}, threads);
+                            {What::kDerivatives, order, 0, 0, 0, {derivative_count(order), 3}},
+                            threads);
           },
           py::arg("u"), py::arg("v"), py::arg("order") = 1, py::arg("grid") = false,
           py::arg("threads") = 0,
@@ -265,7 +274,7 @@ S_v (2) and, for order 2, S_uu (3), S_uv (4), S_vv (5).)")
       .def(
           "normal",
           [](const Surface& s, py::handle u, py::handle v, bool grid, int threads) {
-            return evaluate(s, u, v, grid, {What::kNormal, 1, 0, {3}}, threads);
+            return evaluate(s, u, v, grid, {What::kNormal, 1, 0, 0, 0, {3}}, threads);
           },
           py::arg("u"), py::arg("v"), py::arg("grid") = false, py::arg("threads") = 0,
           "Unit normal S_u x S_v / |S_u x S_v|, shaped as __call__; (0, 0, 0) where S_u x S_v "
@@ -273,7 +282,7 @@ S_v (2) and, for order 2, S_uu (3), S_uv (4), S_vv (5).)")
       .def(
           "_curvature",
           [](const Surface& s, py::handle u, py::handle v, bool grid, int threads) {
-            return evaluate(s, u, v, grid, {What::kCurvature, 2, 0, {4}}, threads);
+            return evaluate(s, u, v, grid, {What::kCurvature, 2, 0, 0, 0, {4}}, threads);
           },
           py::arg("u"), py::arg("v"), py::arg("grid") = false, py::arg("threads") = 0,
           "(gaussian, mean, k1, k2) in the last axis (Surface.curvature() names them).")

@@ -54,7 +54,46 @@ void combine(const Surface& s, int order, int fu, const double* du, int fv, cons
   }
 }
 
+// sum_a Nu[a] (sum_b Nv[b] P_ab): the order of sums of combine() for one output.
+Point combine_one(const Surface& s, int fu, const double* nu, int fv, const double* nv) {
+  Point out = Point::Zero();
+  for (int a = 0; a <= s.degree_u; ++a) {
+    const int i = wrap_index(fu + a, s.count_u);
+    Point c = Point::Zero();
+    for (int b = 0; b <= s.degree_v; ++b) c += nv[b] * s.at(i, wrap_index(fv + b, s.count_v));
+    out += nu[a] * c;
+  }
+  return out;
+}
+
+void check_partial(int du, int dv) {
+  if (du < 0 || dv < 0 || du + dv > 2)
+    throw Error(ErrorCode::kUsage,
+                "derivatives of order du + dv <= 2 (du, dv >= 0), got du=" + std::to_string(du) +
+                    ", dv=" + std::to_string(dv),
+                Place{.option = du < 0 || du + dv > 2 ? "du" : "dv"},
+                {static_cast<double>(du), static_cast<double>(dv)});
+}
+
 }  // namespace
+
+Point surface_partial(const Surface& s, double u, double v, int du, int dv) {
+  check_partial(du, dv);
+  std::array<double, 3 * M> bu, bv;
+  const int fu = eval_basis_upto(s.degree_u, s.count_u, s.periodic_u, u, du, bu.data());
+  const int fv = eval_basis_upto(s.degree_v, s.count_v, s.periodic_v, v, dv, bv.data());
+  return combine_one(s, fu, bu.data() + du * (s.degree_u + 1), fv,
+                     bv.data() + dv * (s.degree_v + 1));
+}
+
+Point surface_partial(const Surface& s, const DirectionBasis& u, std::size_t i,
+                      const DirectionBasis& v, std::size_t j, int du, int dv) {
+  check_partial(du, dv);
+  const std::size_t su = static_cast<std::size_t>(u.order + 1) * (u.degree + 1);
+  const std::size_t sv = static_cast<std::size_t>(v.order + 1) * (v.degree + 1);
+  return combine_one(s, u.first[i], u.d.data() + i * su + du * (u.degree + 1), v.first[j],
+                     v.d.data() + j * sv + dv * (v.degree + 1));
+}
 
 void surface_derivatives(const Surface& s, double u, double v, int order, Point* out) {
   check_order(order);
