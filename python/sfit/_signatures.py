@@ -116,7 +116,7 @@ def make_function(native, name, qualname, signature, doc):
     return f
 
 
-def with_fit_keywords(signature, keep_positional):
+def with_fit_keywords(signature):
     """`signature` with its **kwargs replaced by the fit options as keyword-only parameters
     (those already positional, e.g. fit()'s tol, stay where they are)."""
     params = [p for p in signature.parameters.values() if p.kind is not _P.VAR_KEYWORD]
@@ -139,7 +139,7 @@ def install(module, classes, functions, fit_like):
         native = getattr(module, name)
         sig = native_signature(native)
         if name in fit_like:
-            sig = with_fit_keywords(sig, True)
+            sig = with_fit_keywords(sig)
         setattr(module, name, make_function(native, name, name, sig, native_doc(native)))
     for cls in classes:
         for name, value in list(vars(cls).items()):
@@ -152,7 +152,7 @@ def install(module, classes, functions, fit_like):
             qualname = f"{cls.__name__}.{name}"
             sig = native_signature(native)
             if qualname in fit_like:
-                sig = with_fit_keywords(sig, True)
+                sig = with_fit_keywords(sig)
             f = make_function(native, name, qualname, sig, native_doc(native))
             setattr(cls, name, staticmethod(f) if static else f)
 
@@ -177,3 +177,7 @@ def curvature(self, u, v, grid=False, threads=0):
     if c.ndim == 1:
         parts = [float(x) for x in parts]
     return Curvature(*parts)
+
+
+curvature.__qualname__ = "Surface.curvature"
+curvature.__module__ = "sfit"
