@@ -12,8 +12,19 @@ and every data point is checked on it. u runs along a row, v across the rows.
 See docs/python.md.
 """
 
+from . import _sfit
 from ._errors import Error
-from ._sfit import (
+from ._signatures import Curvature, curvature as _curvature, install as _install
+
+_sfit.Surface.curvature = _curvature
+_install(
+    _sfit,
+    classes=[_sfit.Surface, _sfit.Fit, _sfit.IncrementalFit, _sfit.Curve, _sfit.CurveFit],
+    functions=["fit", "fit_curve", "load_rows", "load_surface", "output_formats"],
+    fit_like={"fit", "IncrementalFit.__init__"},
+)
+
+from ._sfit import (  # noqa: E402  (after the signatures are in place)
     Curve,
     CurveFit,
     Fit,
@@ -28,6 +39,7 @@ from ._sfit import (
 )
 
 __all__ = [
+    "Curvature",
     "Curve",
     "CurveFit",
     "Error",

@@ -1,6 +1,6 @@
 """Type stub of the sfit package (the compiled part is sfit._sfit; see docs/python.md)."""
 
-from typing import Any, Callable, Sequence, Union
+from typing import Any, Callable, NamedTuple, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -27,6 +27,14 @@ class Error(ValueError):
     values: tuple[float, ...]
     fit: "Fit | None"
 
+class Curvature(NamedTuple):
+    """Curvature with respect to the unit normal S_u x S_v (k1 >= k2)."""
+
+    gaussian: Any
+    mean: Any
+    k1: Any
+    k2: Any
+
 class Surface:
     """Tensor-product B-spline surface on uniform knots; u along the rows, v across."""
 
@@ -40,9 +48,17 @@ class Surface:
     control_points: npt.NDArray[np.float64]  # (nu_full, nv_full, 3), stored form
     u_end: float
     v_end: float
-    def __call__(self, u: ArrayLike, v: ArrayLike, grid: bool = False, threads: int = 0) -> npt.NDArray[np.float64]: ...
+    def __call__(self, u: ArrayLike, v: ArrayLike, grid: bool = False, threads: int = 0) -> npt.NDArray[np.float64]:
+        """S(u, v): (n, 3) pointwise; grid=True: (len(u), len(v), 3), [i, j] = S(u[i], v[j])."""
     def derivative(self, u: ArrayLike, v: ArrayLike, du: int = 1, dv: int = 0, grid: bool = False, threads: int = 0) -> npt.NDArray[np.float64]: ...
+    def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1, grid: bool = False, threads: int = 0) -> npt.NDArray[np.float64]:
+        """S, S_u, S_v (, S_uu, S_uv, S_vv) in the axis before the last, from one basis pass."""
     def normal(self, u: ArrayLike, v: ArrayLike, grid: bool = False, threads: int = 0) -> npt.NDArray[np.float64]: ...
+    def curvature(self, u: ArrayLike, v: ArrayLike, grid: bool = False, threads: int = 0) -> Curvature: ...
+    def closest_point(self, points: ArrayLike, threads: int = 0) -> tuple[Any, Any]:
+        """(u, v) of the nearest point of the surface: numbers for one point, (n,) arrays for (n, 3)."""
+    @staticmethod
+    def from_knots(knots_u: ArrayLike, knots_v: ArrayLike, control_points: ArrayLike, degree_u: int, degree_v: int, periodic_u: bool = False, periodic_v: bool = False) -> Surface: ...
     def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm") -> None: ...
     def to_json(self) -> dict[str, Any]: ...
 
@@ -60,21 +76,21 @@ class Fit:
 def fit(
     rows: Rows,
     tol: PerAxis | None = None,
+    *,
     tol_rel: float | None = None,
-    degree: int = 3,
+    degree: int | None = None,
     degree_u: int | None = None,
     degree_v: int | None = None,
-    closed: str = "",
-    threads: int = 0,
-    *,
-    search: str = "fast",
-    parameters: str = "paper",
+    closed: str | None = None,
+    search: str | None = None,
+    parameters: str | None = None,
+    threads: int | None = None,
     row_count_hints: Sequence[int] | None = None,
     column_count_hints: Sequence[int] | None = None,
     progress: Callable[[str, int, int], None] | None = None,
-    **options: Any,
 ) -> Fit:
-    """Fits rows of points ((N_j, 3) arrays, or an (M, N, 3) array) within tolerance T."""
+    """Fits rows of points ((N_j, 3) arrays, or an (M, N, 3) array; a 4th column: weights)
+    within tolerance T. An option None (the default) is the library's default."""
 
 class IncrementalFit:
     """A fit that follows edits of its rows; each edit equals sfit.fit() of the edited rows."""
@@ -82,7 +98,23 @@ class IncrementalFit:
     fit: Fit
     rows: list[npt.NDArray[np.float64]]
     rows_refitted: int
-    def __init__(self, rows: Rows, **options: Any) -> None: ...
+    def __init__(
+        self,
+        rows: Rows,
+        *,
+        tol: PerAxis | None = None,
+        tol_rel: float | None = None,
+        degree: int | None = None,
+        degree_u: int | None = None,
+        degree_v: int | None = None,
+        closed: str | None = None,
+        search: str | None = None,
+        parameters: str | None = None,
+        threads: int | None = None,
+        row_count_hints: Sequence[int] | None = None,
+        column_count_hints: Sequence[int] | None = None,
+        progress: Callable[[str, int, int], None] | None = None,
+    ) -> None: ...
     def move_point(self, row: int, index: int, to: ArrayLike) -> Fit: ...
     def insert_point(self, row: int, index: int, point: ArrayLike) -> Fit: ...
     def erase_point(self, row: int, index: int) -> Fit: ...
@@ -114,6 +146,7 @@ def fit_curve(
     parameters: str = "paper",
     hint: int = 0,
 ) -> CurveFit: ...
-def load_rows(path: str) -> list[npt.NDArray[np.float64]]: ...
+def load_rows(path: str) -> list[npt.NDArray[np.float64]]:
+    """(N_j, 3) arrays, or (N_j, 4) (x, y, z, w) when the file carries weights."""
 def load_surface(path: str) -> Surface: ...
 def output_formats() -> list[str]: ...

@@ -37,14 +37,15 @@ Parameter domain [0, t_end]; evaluation clamps (open) or wraps (periodic) t.)")
       .def_property_readonly("count", &Curve::count, "distinct control points")
       .def_property_readonly("t_end", &Curve::domain_end, "end of the domain [0, t_end]")
       .def_property_readonly(
-          "knots", [](const Curve& c) { return vector_to_array(c.knots()); }, "full knot vector")
+          "knots", [](const Curve& c) { return read_only(vector_to_array(c.knots())); },
+          "full knot vector")
       .def_property_readonly(
           "control_points",
           [](const Curve& c) {
             std::vector<Point> full = c.control;
             if (c.periodic)
               for (int k = 0; k < c.degree; ++k) full.push_back(c.control[k % c.count()]);
-            return points_to_array(full.data(), full.size());
+            return read_only(points_to_array(full.data(), full.size()));
           },
           "(count + degree if periodic else count, 3): stored form with the wrap copies")
       .def(
@@ -62,11 +63,13 @@ Parameter domain [0, t_end]; evaluation clamps (open) or wraps (periodic) t.)")
   py::class_<CurveFit>(m, "CurveFit", "A fitted curve and what it achieved (sfit.fit_curve).")
       .def_readonly("curve", &CurveFit::curve)
       .def_property_readonly(
-          "parameters", [](const CurveFit& f) { return vector_to_array(f.parameters); },
+          "parameters", [](const CurveFit& f) { return read_only(vector_to_array(f.parameters)); },
           "parameter t of each point")
       .def_property_readonly(
           "max_deviation",
-          [](const CurveFit& f) { return points_to_array(&f.max_deviation, 1).reshape({3}); },
+          [](const CurveFit& f) {
+            return read_only(points_to_array(&f.max_deviation, 1).reshape({3}));
+          },
           "max |C(t_j) - D_j| per axis")
       .def_readonly("solves", &CurveFit::solves, "least-squares solves of the count search")
       .def_readonly("scaled", &CurveFit::scaled,

@@ -99,15 +99,15 @@ void bind_fit(py::module_& m) {
           "report", [](const PyFit& f) { return report_dict(f.result.report); },
           "dict with the keys of the JSON report (`sfit fit --report`, docs/surface-json.md)")
       .def_property_readonly(
-          "u", [](const PyFit& f) { return vector_to_array(f.result.u); },
+          "u", [](const PyFit& f) { return read_only(vector_to_array(f.result.u)); },
           "parameter u of every data point, row after row (length: all points)")
       .def_property_readonly(
-          "v", [](const PyFit& f) { return vector_to_array(f.result.v); },
+          "v", [](const PyFit& f) { return read_only(vector_to_array(f.result.v)); },
           "parameter v of every row (length: rows)")
       .def_property_readonly(
           "points",
           [](const PyFit& f) {
-            return points_to_array(f.rows->points().data(), f.rows->total_points());
+            return read_only(points_to_array(f.rows->points().data(), f.rows->total_points()));
           },
           "the fitted points, row after row, as a (P, 3) array (P: all points)")
       .def_property_readonly(

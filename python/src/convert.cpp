@@ -46,27 +46,82 @@ std::vector<Point> points_from(py::handle points, const std::string& what, long 
 
 Rows rows_from(py::handle rows) {
   Rows out;
+  std::vector<double> weights;
   if (py::isinstance<py::array>(rows)) {
     DoubleArray a = numeric(rows, "rows", -1);
-    if (a.ndim() != 3 || a.shape(2) != 3)
+    if (a.ndim() != 3 || (a.shape(2) != 3 && a.shape(2) != 4))
       data_error(
-          "rows must be an (M, N, 3) array or a list of (N_j, 3) arrays, got an array of "
-          "shape " +
+          "rows must be an (M, N, 3) array (an (M, N, 4) array with weights) or a list of "
+          "(N_j, 3) arrays, got an array of shape " +
           shape_of(a) + (a.ndim() == 2 ? " (one row: use fit_curve)" : ""));
     const auto m = static_cast<std::size_t>(a.shape(0)), n = static_cast<std::size_t>(a.shape(1));
+    const auto c = static_cast<std::size_t>(a.shape(2));
     out.reserve(m * n, m);
-    const auto* p = reinterpret_cast<const Point*>(a.data());
-    for (std::size_t j = 0; j < m; ++j) out.add_row({p + j * n, n});
+    if (c == 3) {
+      const auto* p = reinterpret_cast<const Point*>(a.data());
+      for (std::size_t j = 0; j < m; ++j) out.add_row({p + j * n, n});
+      return out;
+    }
+    std::vector<Point> row(n);
+    for (std::size_t j = 0; j < m; ++j) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const double* q = a.data() + (j * n + k) * 4;
+        row[k] = Point(q[0], q[1], q[2]);
+        weights.push_back(q[3]);
+      }
+      out.add_row(row);
+    }
+    out.set_weights(std::move(weights));
     return out;
   }
   if (py::isinstance<py::str>(rows) || !py::isinstance<py::sequence>(rows))
     data_error("rows must be a list of (N_j, 3) arrays or an (M, N, 3) array, got " +
                std::string(py::str(py::type::of(rows).attr("__name__"))));
   const auto seq = py::reinterpret_borrow<py::sequence>(rows);
+  long columns = 0;  // 3, or 4 with weights: the same in every row
   for (std::size_t j = 0; j < seq.size(); ++j) {
-    const std::vector<Point> row =
-        points_from(seq[j], "rows[" + std::to_string(j) + "]", static_cast<long>(j));
-    out.add_row(row);
+    const std::string what = "rows[" + std::to_string(j) + "]";
+    DoubleArray a = numeric(seq[j], what, static_cast<long>(j));
+    if (a.ndim() == 2 && a.shape(1) == 4 && (columns == 0 || columns == 4)) {
+      columns = 4;
+      std::vector<Point> row(static_cast<std::size_t>(a.shape(0)));
+      for (std::size_t k = 0; k < row.size(); ++k) {
+        const double* q = a.data() + k * 4;
+        row[k] = Point(q[0], q[1], q[2]);
+        weights.push_back(q[3]);
+      }
+      out.add_row(row);
+      continue;
+    }
+    if (columns == 4 || (a.ndim() == 2 && a.shape(1) == 4))
+      data_error(what +
+                     ": every row has 3 columns (x, y, z) or every row has 4 (x, y, z, w), "
+                     "got shape " +
+                     shape_of(a) + " after rows of " + std::to_string(columns ? columns : 3) +
+                     " columns",
+                 static_cast<long>(j));
+    columns = 3;
+    out.add_row(points_from(a, what, static_cast<long>(j)));
+  }
+  if (columns == 4) out.set_weights(std::move(weights));
+  return out;
+}
+
+py::list rows_to_list_weighted(const Rows& rows) {
+  if (!rows.weighted()) return rows_to_list(rows);
+  py::list out;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto r = rows[j];
+    const auto w = rows.row_weights(j);
+    DoubleArray a({static_cast<py::ssize_t>(r.size()), py::ssize_t{4}});
+    double* p = a.mutable_data();
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      p[4 * k] = r[k].x();
+      p[4 * k + 1] = r[k].y();
+      p[4 * k + 2] = r[k].z();
+      p[4 * k + 3] = w[k];
+    }
+    out.append(a);
   }
   return out;
 }
@@ -120,6 +175,17 @@ py::list rows_to_list(const Rows& rows) {
   for (std::size_t j = 0; j < rows.size(); ++j)
     out.append(points_to_array(rows[j].data(), rows[j].size()));
   return out;
+}
+
+py::array read_only(py::array a) {
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+void check_path(const std::string& path, const std::string& option) {
+  if (path.find('\0') != std::string::npos)
+    usage_error(option, "the path contains a NUL character (at byte " +
+                            std::to_string(path.find('\0')) + ")");
 }
 
 py::object json_to_python(const nlohmann::json& j) {

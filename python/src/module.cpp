@@ -2,6 +2,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
+#include "eval.h"
 #include "sfit/version.h"
 
 PYBIND11_MODULE(_sfit, m) {
@@ -14,4 +15,5 @@ PYBIND11_MODULE(_sfit, m) {
   sfit::python::bind_curve(m);
   sfit::python::bind_fit(m);
   sfit::python::bind_io(m);
+  sfit::python::bind_eval_module(m);
 }

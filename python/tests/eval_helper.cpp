@@ -5,6 +5,7 @@
 
 #include "sfit/error.h"
 #include "sfit/io/surface_json.h"
+#include "sfit/surface_eval.h"
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -16,8 +17,8 @@ int main(int argc, char** argv) {
     double u = 0, v = 0;
     while (std::scanf("%lf %lf", &u, &v) == 2) {
       const sfit::Point p = s.evaluate(u, v);
-      sfit::Point d[6];
-      s.derivatives(u, v, d);
+      sfit::Point d[3];
+      sfit::surface_derivatives(s, u, v, 1, d);  // the module's derivatives
       std::printf("%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.x(), p.y(), p.z(),
                   d[1].x(), d[1].y(), d[1].z(), d[2].x(), d[2].y(), d[2].z());
     }

@@ -1,4 +1,5 @@
 #include "basis.h"
+#include "basis_upto.h"
 
 #include <algorithm>
 #include <array>
@@ -171,6 +172,87 @@ int eval_basis_derivatives(int degree, int count, bool periodic, double t, int n
     f *= (p - k);
   }
   return s - p;
+}
+
+int eval_basis_upto(int degree, int count, bool periodic, double t, int nderiv, double* ders) {
+  const int p = degree;
+  if (nderiv > 2) return eval_basis_derivatives(p, count, periodic, t, nderiv, ders);
+  const int first = eval_basis(p, count, periodic, t, ders);
+  if (nderiv <= 0) return first;
+  double reduced = t;
+  const int s = find_span(p, count, periodic, reduced);
+  const bool uniform = periodic || (s >= 2 * p - 1 && s <= count - p);
+  // The basis of degrees p - 2 (r) and p - 1 (q) on the same span, by the recurrence of
+  // eval_basis(): division-free on uniform spans, A2.2 with the local knots elsewhere.
+  std::array<double, kMaxDegree + 1> N{}, q{}, r{};
+  N[0] = 1.0;
+  if (p - 1 == 0) q[0] = 1.0;
+  if (p - 2 == 0) r[0] = 1.0;
+  const LocalKnots U{p, count, periodic};
+  const double x = reduced - (s - p);
+  std::array<double, kMaxDegree + 1> left{}, right{};
+  for (int j = 1; j <= p - 1; ++j) {
+    double saved = 0.0;
+    if (uniform) {
+      const double inv = kInverse[j];
+      for (int i = 0; i < j; ++i) {
+        const double temp = N[i] * inv;
+        N[i] = saved + (i + 1 - x) * temp;
+        saved = (x + j - i - 1) * temp;
+      }
+    } else {
+      left[j] = reduced - U.knot(s + 1 - j);
+      right[j] = U.knot(s + j) - reduced;
+      for (int i = 0; i < j; ++i) {
+        const double temp = N[i] / (right[i + 1] + left[j - i]);
+        N[i] = saved + right[i + 1] * temp;
+        saved = left[j - i] * temp;
+      }
+    }
+    N[j] = saved;
+    if (j == p - 2) r = N;
+    if (j == p - 1) q = N;
+  }
+  double* d1 = ders + (p + 1);
+  double* d2 = ders + 2 * (p + 1);
+  if (uniform) {
+    // Unit spacing: N_{s-p+a,p}' = q[a-1] - q[a] (q has p entries); N'' = r[a-2] - 2 r[a-1]
+    // + r[a] (r has p - 1).
+    for (int a = 0; a <= p; ++a) d1[a] = (a > 0 ? q[a - 1] : 0.0) - (a < p ? q[a] : 0.0);
+    if (nderiv >= 2)
+      for (int a = 0; a <= p; ++a) {
+        if (p < 2) {
+          d2[a] = 0.0;
+          continue;
+        }
+        const double r2 = a >= 2 ? r[a - 2] : 0.0;
+        const double r1 = (a >= 1 && a - 1 <= p - 2) ? r[a - 1] : 0.0;
+        const double r0 = a <= p - 2 ? r[a] : 0.0;
+        d2[a] = r2 - 2.0 * r1 + r0;
+      }
+    return first;
+  }
+  // N'_{i,k} = k / (u_{i+k} - u_i) N_{i,k-1} - k / (u_{i+k+1} - u_{i+1}) N_{i+1,k-1}, a term
+  // dropped where its knot interval is empty (its N is zero there).
+  auto term = [](double k, double value, double width) {
+    return width > 0 ? k * value / width : 0.0;
+  };
+  for (int a = 0; a <= p; ++a)
+    d1[a] = (a > 0 ? term(p, q[a - 1], U.knot(s + a) - U.knot(s - p + a)) : 0.0) -
+            (a < p ? term(p, q[a], U.knot(s + a + 1) - U.knot(s - p + a + 1)) : 0.0);
+  if (nderiv >= 2) {
+    // Derivatives of the degree p - 1 functions N_{s-p+1+b, p-1} from r, then as above.
+    std::array<double, kMaxDegree + 1> dq{};
+    for (int b = 0; b < p; ++b)
+      dq[b] = p < 2 ? 0.0
+                    : (b > 0 ? term(p - 1, r[b - 1], U.knot(s + b) - U.knot(s - p + 1 + b)) : 0.0) -
+                          (b < p - 1 ? term(p - 1, r[b], U.knot(s + b + 1) - U.knot(s - p + 2 + b))
+                                     : 0.0);
+    for (int a = 0; a <= p; ++a)
+      d2[a] = (a > 0 ? term(p, dq[a - 1], U.knot(s + a) - U.knot(s - p + a)) : 0.0) -
+              (a < p ? term(p, dq[a], U.knot(s + a + 1) - U.knot(s - p + a + 1)) : 0.0);
+  }
+  return first;
 }
 
 }  // namespace sfit

@@ -12,6 +12,7 @@
 #include "basis.h"
 #include "parallel.h"
 #include "sfit/error.h"
+#include "sfit/fit_limits.h"
 
 namespace sfit {
 namespace {
@@ -80,9 +81,7 @@ void validate(const Rows& rows, const FitOptions& o) {
   };
   check_degree(o.degree_u, "degree_u");
   check_degree(o.degree_v, "degree_v");
-  if (o.threads < 0)
-    throw Error(ErrorCode::kUsage, "threads must be >= 0", Place{.option = "threads"},
-                {static_cast<double>(o.threads)});
+  check_threads(o.threads, "threads");  // 0 ... kMaxThreads: more is refused, not attempted
   const std::size_t M = rows.size();
   if (M == 0) throw Error(ErrorCode::kInputData, "no points: the input has no rows");
   if (M < 2)

@@ -1,0 +1,87 @@
+"""Fit and Surface pickle, copy and deep-copy round trips, bit for bit; bad states refused."""
+
+import copy
+import pickle
+
+import numpy as np
+import pytest
+
+import sfit
+from conftest import example, wavy_grid
+
+
+def same_surface(a, b):
+    assert a.to_json() == b.to_json()
+    assert np.array_equal(a.control_points, b.control_points)
+    u = np.linspace(-0.1, a.u_end + 0.1, 31)
+    v = np.linspace(0, a.v_end, 17)
+    assert np.array_equal(a(u, v, grid=True), b(u, v, grid=True))
+
+
+@pytest.fixture(scope="module")
+def fits():
+    weighted = [np.column_stack([r, np.linspace(0.5, 3.0, len(r))]) for r in wavy_grid(12, 15)]
+    return [sfit.fit(wavy_grid(), tol=0.01),
+            sfit.fit(sfit.load_rows(example("d150_wing")), closed="u"),
+            sfit.fit(weighted, tol=0.02)]
+
+
+@pytest.mark.parametrize("how", ["pickle", "copy", "deepcopy"])
+def test_surface_round_trips(fits, how):
+    for f in fits:
+        s = f.surface
+        t = {"pickle": lambda x: pickle.loads(pickle.dumps(x, protocol=pickle.HIGHEST_PROTOCOL)),
+             "copy": copy.copy, "deepcopy": copy.deepcopy}[how](s)
+        assert t is not s and isinstance(t, sfit.Surface)
+        same_surface(s, t)
+
+
+@pytest.mark.parametrize("how", ["pickle", "copy", "deepcopy"])
+def test_fit_round_trips(fits, tmp_path, how):
+    for k, f in enumerate(fits):
+        g = {"pickle": lambda x: pickle.loads(pickle.dumps(x)), "copy": copy.copy,
+             "deepcopy": copy.deepcopy}[how](f)
+        assert g is not f and isinstance(g, sfit.Fit)
+        same_surface(f.surface, g.surface)
+        assert g.report == f.report
+        for name in ("u", "v", "points"):
+            assert np.array_equal(getattr(g, name), getattr(f, name))
+        assert g.row_sizes == f.row_sizes
+        # The whole state, weights included, is the same.
+        assert g.__reduce__()[1] == f.__reduce__()[1]
+        # And what it writes: the .json carries surface and report.
+        f.save(str(tmp_path / f"a{k}.json"))
+        g.save(str(tmp_path / f"b{k}.json"))
+        assert (tmp_path / f"a{k}.json").read_bytes() == (tmp_path / f"b{k}.json").read_bytes()
+
+
+def test_weights_travel_with_a_pickled_fit(fits):
+    state = fits[2].__reduce__()[1][0]
+    assert len(state[7]) == 8 * len(fits[2].points)  # one float64 weight per point
+    assert fits[0].__reduce__()[1][0][7] == b""
+
+
+def test_surface_setstate_of_garbage_raises_and_changes_nothing(fits):
+    s = copy.deepcopy(fits[0].surface)
+    before = s.to_json()
+    with pytest.raises(sfit.Error) as e:
+        s.__setstate__("garbage")
+    assert e.value.code == "input-syntax" and "pickle" in str(e.value)
+    with pytest.raises(sfit.Error) as e:
+        s.__setstate__(42)
+    assert e.value.code == "input-data" and "Surface state" in str(e.value)
+    with pytest.raises(sfit.Error) as e:
+        s.__setstate__('{"type": "bspline_surface", "degree": [3, 3]}')
+    assert e.value.code == "input-data"
+    assert s.to_json() == before
+    # A good state replaces the surface.
+    other = fits[1].surface
+    s.__setstate__(other.__getstate__())
+    same_surface(s, other)
+
+
+def test_fit_state_of_garbage_raises():
+    with pytest.raises(sfit.Error):
+        sfit._sfit._fit_from_state((2, "", "", b"", b"", b"", [], b""))
+    with pytest.raises(sfit.Error):
+        sfit._sfit._fit_from_state(("x",))
