@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include "cli_common.h"
@@ -61,12 +62,28 @@ int run_edit(const EditArgs& a) {
   };
   config.export_formats = output_extensions();
   say("fitting " + a.input + " ...");
-  server::EditorServer server(std::move(config));
-  server::serve_until_signal(server, [&] {
-    std::fprintf(stderr, "sfit: editing %s at %s\n", a.input.c_str(), server.url().c_str());
+  std::unique_ptr<server::EditorServer> server;
+  try {
+    server = std::make_unique<server::EditorServer>(std::move(config));
+  } catch (const Error& e) {
+    // The first fit's errors name rows and points: say in which file.
+    if (!e.place().file.empty() || !e.place().option.empty()) throw;
+    Place p = e.place();
+    p.file = a.input;
+    throw Error(e.code(), e.message(), p, e.values());
+  }
+  const bool clean = server::serve_until_signal(*server, [&] {
+    std::fprintf(stderr, "sfit: editing %s at %s\n", a.input.c_str(), server->url().c_str());
     std::fflush(stderr);
-    if (!a.no_browser) open_browser(server.url());
+    if (!a.no_browser) open_browser(server->url());
   });
+  if (!clean) {
+    // A refit still runs (the signal came during a long one): it is abandoned, not awaited;
+    // it writes nothing, and a save or an export is a rename of a finished file.
+    say("stopped (the refit under way was abandoned)");
+    std::fflush(stderr);
+    std::_Exit(0);
+  }
   say("stopped");
   return 0;
 }
