@@ -141,10 +141,12 @@ bool GuardedHttpServer::process_and_close_socket(socket_t sock) {
     return false;
   }
   for (std::size_t left = keep_alive_max_count_; left > 0; --left) {
-    // The next request: its first byte within the keep-alive time.
-    if (!wait_for(*this, sock, POLLIN,
-                  Clock::now() + std::chrono::seconds(keep_alive_timeout_sec_)))
-      break;
+    // The first byte of the connection's first request within the request time (a client
+    // may open the connection well before it sends), of the next ones within keep-alive's.
+    const auto wait = left == keep_alive_max_count_
+                          ? Clock::now() + limits_.request_read
+                          : Clock::now() + std::chrono::seconds(keep_alive_timeout_sec_);
+    if (!wait_for(*this, sock, POLLIN, wait)) break;
     DeadlineStream strm(*this, sock, Clock::now() + limits_.request_read);
     bool closed = false;
     if (!process_request(strm, left == 1, closed, nullptr) || closed) break;

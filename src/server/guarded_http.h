@@ -1,7 +1,8 @@
 // cpp-httplib's server with limits against slow clients, applied before any request is read:
 // at most `connections` connections at a time (more are answered 503 and closed at once),
-// and every request (its line, headers and body) read within `request_read` of its first
-// byte, however slowly it drips; reads also end within 0.1 s of stop(). Debian's httplib
+// a connection's first byte within `request_read`, and every request (its line, headers and
+// body) read within `request_read` of its first byte, however slowly it drips; reads also end
+// within 0.1 s of stop(). Debian's httplib
 // (0.11) times out each read, not a whole request, and its pool has max(8, cores - 1)
 // threads, so 8 clients dripping a byte a second held every worker for good.
 #pragma once
