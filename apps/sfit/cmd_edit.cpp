@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -53,6 +54,7 @@ int run_edit(const EditArgs& a) {
   config.input = a.input;
   config.options = checked.options;
   config.options.tolerance = checked.tolerance(in.rows);
+  const std::vector<long> first_line = in.first_line;
   config.rows = std::move(in.rows);
   config.port = a.port;
   const std::string units = a.units, name = in.name;
@@ -66,10 +68,13 @@ int run_edit(const EditArgs& a) {
   try {
     server = std::make_unique<server::EditorServer>(std::move(config));
   } catch (const Error& e) {
-    // The first fit's errors name rows and points: say in which file.
+    // The first fit's errors name rows and points: say in which file, at which line (as
+    // sfit fit does).
     if (!e.place().file.empty() || !e.place().option.empty()) throw;
     Place p = e.place();
-    p.file = a.input;
+    p.file = name;
+    if (p.row >= 0 && p.row < static_cast<long>(first_line.size()))
+      p.line = first_line[static_cast<std::size_t>(p.row)] + std::max(0L, p.point);
     throw Error(e.code(), e.message(), p, e.values());
   }
   const bool clean = server::serve_until_signal(*server, [&] {

@@ -185,7 +185,7 @@ test("start-up errors name the file", async () => {
   try {
     const cases = [
       ["bad.rows", "0 0 0\n1 0 x\n", 4, /^sfit: error: .*bad\.rows:2:5: row 0, point 1: /m],
-      ["one.rows", "0 0 0\n1 0 0\n2 0 1\n", null, /^sfit: error: .*one\.rows: /m],
+      ["one.rows", "0 0 0\n1 0 0\n2 0 1\n", 5, /^sfit: error: .*one\.rows:1: row 0: one row makes a curve, not a surface/m],
     ];
     for (const [name, text, code, re] of cases) {
       writeFileSync(join(dir, name), text);
