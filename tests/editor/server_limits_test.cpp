@@ -66,7 +66,7 @@ std::string http_exchange(int port, const std::string& request) {
 std::string get_state(int port) {
   const std::string p = std::to_string(port);
   return http_exchange(port, "GET /api/state?rows=0 HTTP/1.1\r\nHost: 127.0.0.1:" + p +
-                            "\r\nX-Sfit-Token: t0k\r\nConnection: close\r\n\r\n");
+                                 "\r\nX-Sfit-Token: t0k\r\nConnection: close\r\n\r\n");
 }
 
 // A client that sends a request's first bytes, then one more byte every 200 ms, and notes
@@ -166,8 +166,8 @@ TEST(HostHeader, OnlyOneIsAccepted) {
   const std::string p = std::to_string(r.port());
   const std::string a =
       http_exchange(r.port(), "GET /api/state?rows=0 HTTP/1.1\r\nHost: 127.0.0.1:" + p +
-                             "\r\nHost: evil.example\r\nX-Sfit-Token: t0k\r\n"
-                             "Connection: close\r\n\r\n");
+                                  "\r\nHost: evil.example\r\nX-Sfit-Token: t0k\r\n"
+                                  "Connection: close\r\n\r\n");
   EXPECT_EQ(a.rfind("HTTP/1.1 403", 0), 0u) << a;
   EXPECT_NE(a.find(R"({"code":"host","error":"exactly one Host header is accepted, got 2")"),
             std::string::npos)
@@ -200,9 +200,10 @@ TEST(Stop, AbandonsARequestThatDoesNotEnd) {
   const int port = r->port();
   auto answer = std::async(std::launch::async, [port] {
     const std::string p = std::to_string(port), body = R"({"format":"slow"})";
-    return http_exchange(port, "POST /api/export HTTP/1.1\r\nHost: 127.0.0.1:" + p +
-                              "\r\nX-Sfit-Token: t0k\r\nContent-Length: " +
-                              std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body);
+    return http_exchange(
+        port, "POST /api/export HTTP/1.1\r\nHost: 127.0.0.1:" + p +
+                  "\r\nX-Sfit-Token: t0k\r\nContent-Length: " + std::to_string(body.size()) +
+                  "\r\nConnection: close\r\n\r\n" + body);
   });
   {
     std::unique_lock<std::mutex> lock(m);
