@@ -4,7 +4,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include "cli_common.h"
@@ -52,6 +54,7 @@ int run_edit(const EditArgs& a) {
   config.input = a.input;
   config.options = checked.options;
   config.options.tolerance = checked.tolerance(in.rows);
+  const std::vector<long> first_line = in.first_line;
   config.rows = std::move(in.rows);
   config.port = a.port;
   const std::string units = a.units, name = in.name;
@@ -61,12 +64,31 @@ int run_edit(const EditArgs& a) {
   };
   config.export_formats = output_extensions();
   say("fitting " + a.input + " ...");
-  server::EditorServer server(std::move(config));
-  server::serve_until_signal(server, [&] {
-    std::fprintf(stderr, "sfit: editing %s at %s\n", a.input.c_str(), server.url().c_str());
+  std::unique_ptr<server::EditorServer> server;
+  try {
+    server = std::make_unique<server::EditorServer>(std::move(config));
+  } catch (const Error& e) {
+    // The first fit's errors name rows and points: say in which file, at which line (as
+    // sfit fit does).
+    if (!e.place().file.empty() || !e.place().option.empty()) throw;
+    Place p = e.place();
+    p.file = name;
+    if (p.row >= 0 && p.row < static_cast<long>(first_line.size()))
+      p.line = first_line[static_cast<std::size_t>(p.row)] + std::max(0L, p.point);
+    throw Error(e.code(), e.message(), p, e.values());
+  }
+  const bool clean = server::serve_until_signal(*server, [&] {
+    std::fprintf(stderr, "sfit: editing %s at %s\n", a.input.c_str(), server->url().c_str());
     std::fflush(stderr);
-    if (!a.no_browser) open_browser(server.url());
+    if (!a.no_browser) open_browser(server->url());
   });
+  if (!clean) {
+    // A refit still runs (the signal came during a long one): it is abandoned, not awaited;
+    // it writes nothing, and a save or an export is a rename of a finished file.
+    say("stopped (the refit under way was abandoned)");
+    std::fflush(stderr);
+    std::_Exit(0);
+  }
   say("stopped");
   return 0;
 }

@@ -1,6 +1,6 @@
 // The editor's JSON API against the real server on 127.0.0.1: the token, the Host header,
 // bad requests (400, state unchanged, server alive), edits, undo/redo over 100 steps, the
-// latest-wins drag, save with INPUT.bak, exports, and a clean end on SIGTERM.
+// drag, save with INPUT.bak, exports, and a clean end on SIGTERM.
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { readFileSync, existsSync, statSync } from "node:fs";
@@ -178,10 +178,12 @@ test("a drag is one undo step; its quick refits are not final; stale drag steps 
     assert.equal(r.json.checked, true, "a quick refit checks every point too");
     assert.equal(r.json.rows, undefined, "drag steps omit the rows");
   }
-  // A step older than one already received is skipped, not refitted.
-  const stale = await api.post("/api/edit", { op: "move", row: 6, index: 4, to: [p[0], p[1], p[2] + 9], phase: "drag", seq: 101 });
-  assert.equal(stale.json.skipped, true);
-  assert.equal(stale.json.version, r.json.version);
+  // A step numbered below one already answered (a reloaded page counting from 1 again) is
+  // refitted: only a step that a newer one overtook while it waited is skipped
+  // (editor_server_test, DragSteps).
+  const again = await api.post("/api/edit", { op: "move", row: 6, index: 4, to: [p[0], p[1], p[2] + 0.45], phase: "drag", seq: 101 });
+  assert.equal(again.json.skipped, false);
+  assert.equal(again.json.version, r.json.version + 1);
   r = await api.post("/api/edit", { op: "move", row: 6, index: 4, to: [p[0], p[1], p[2] + 0.5], phase: "rest", seq: 106 });
   assert.equal(r.json.final, true);
   assert.equal(r.json.dragging, true);

@@ -1,25 +1,27 @@
 // Eigen (through the sfit headers) before httplib.h: <resolv.h> defines the macro _res.
 #include "api_json.h"
 #include "assets.h"
-#include "rows_text.h"
+#include "drag_steps.h"
+#include "save_file.h"
 #include "session.h"
 #include "sfit/error.h"
 #include "sfit/io/file_names.h"
 #include "sfit/io/surface_json.h"
 #include "sfit/server/editor.h"
-
-#include <httplib.h>
-#include <pthread.h>
-#include <signal.h>
+// clang-format off
+#include "guarded_http.h"  // httplib.h
+// clang-format on
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -74,11 +76,14 @@ struct EditorServer::Impl {
   EditorConfig config;
   Session session;
   std::mutex mutex;  // one request at a time touches the session
-  httplib::Server http;
+  GuardedHttpServer http{GuardedHttpServer::Limits{}};
   int port = 0;
   std::string token;
-  std::atomic<long long> latest_seq{-1};  // newest drag step received
+  DragSteps drag_steps;  // which drag steps a newer one overtook
   bool saved_once = false;
+  std::mutex run_mutex;  // run() under way (stop_within() waits for its end)
+  std::condition_variable run_ended;
+  bool running = false;
 
   explicit Impl(EditorConfig c)
       : config(std::move(c)), session(std::move(config.rows), config.options) {
@@ -183,6 +188,11 @@ struct EditorServer::Impl {
     http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
       const std::string host = req.get_header_value("Host");
       const std::string p = std::to_string(port);
+      if (const std::size_t hosts = req.get_header_value_count("Host"); hosts != 1) {
+        reply_error(res, 403, "exactly one Host header is accepted, got " + std::to_string(hosts),
+                    "host");
+        return httplib::Server::HandlerResponse::Handled;
+      }
       if (host != "127.0.0.1:" + p && host != "localhost:" + p) {
         reply_error(res, 403,
                     "Host '" + host + "' refused: only 127.0.0.1:" + p + " or localhost:" + p,
@@ -240,24 +250,22 @@ struct EditorServer::Impl {
     });
     http.Post("/api/edit", [this](const httplib::Request& req, httplib::Response& res) {
       json body;
-      long long seq = -1;
+      std::string key;
+      std::optional<std::uint64_t> ticket;  // a drag step with a seq: its arrival
+      std::uint64_t seq = 0;
       try {
         body = body_of(req);
-        if (body.contains("seq")) {
-          if (!body["seq"].is_number_unsigned())
-            throw Error(ErrorCode::kUsage, "must be a whole number >= 0", Place{.option = "seq"});
-          seq = body["seq"].get<long long>();
-          long long prev = latest_seq.load();
-          while (seq > prev && !latest_seq.compare_exchange_weak(prev, seq)) {
-          }
-        }
+        key = client_key(body);  // takes "client" out of the edit
+        if (body.contains("seq")) seq = seq_of(body["seq"]);
+        if (body.contains("seq") && body.value("phase", json()) == "drag")
+          ticket = drag_steps.arrive(key, seq);
       } catch (const Error& e) {
         reply(res, 400, error_json(e));
         return;
       }
       const bool drag = body.value("phase", json()) == "drag";
       guarded(res, [&] {
-        if (drag && seq >= 0 && seq < latest_seq.load()) {  // a newer step waits: skip this one
+        if (ticket && drag_steps.overtaken(key, *ticket, seq)) {  // a newer step came: skip this
           json j = state(false);
           j["skipped"] = true;
           reply(res, 200, j);
@@ -299,14 +307,14 @@ struct EditorServer::Impl {
                           "' is not a .rows file: export the surface instead",
                       Place{.option = "save"});
         session.finish_drag();
-        save_rows(config.input, session.rows(), !saved_once);
-        const bool first = !saved_once;
+        const SaveResult saved = save_rows(config.input, session.rows());
         saved_once = true;
         reply(res, 200,
               json{{"saved", config.input},
-                   {"backup", first || std::filesystem::exists(config.input + ".bak")
-                                  ? json(config.input + ".bak")
-                                  : json(nullptr)},
+                   {"written", saved.target},
+                   {"backup", saved.backup},
+                   {"backup_written", saved.backup_written},
+                   {"weights", session.rows().weighted()},
                    {"version", session.version()}});
       });
     });
@@ -382,32 +390,22 @@ std::string EditorServer::url() const {
   return "http://127.0.0.1:" + std::to_string(impl_->port) + "/?token=" + impl_->token;
 }
 void EditorServer::run() {
-  impl_->http.listen_after_bind();
+  {
+    std::lock_guard<std::mutex> lock(impl_->run_mutex);
+    impl_->running = true;
+  }
+  impl_->http.listen_after_bind();  // returns once every request has ended
+  std::lock_guard<std::mutex> lock(impl_->run_mutex);
+  impl_->running = false;
+  impl_->run_ended.notify_all();
 }
 void EditorServer::stop() {
   impl_->http.stop();
 }
-
-void serve_until_signal(EditorServer& server, const std::function<void()>& on_ready) {
-  sigset_t set, old;
-  sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &set, &old);  // the server's threads inherit the mask
-  std::atomic<bool> ended{false};
-  std::thread t([&] {
-    server.run();
-    ended = true;
-  });
-  if (on_ready) on_ready();
-  const timespec tick{0, 200'000'000};
-  while (!ended) {
-    const int sig = sigtimedwait(&set, nullptr, &tick);
-    if (sig == SIGINT || sig == SIGTERM) break;
-  }
-  server.stop();
-  t.join();
-  pthread_sigmask(SIG_SETMASK, &old, nullptr);
+bool EditorServer::stop_within(std::chrono::milliseconds grace) {
+  stop();
+  std::unique_lock<std::mutex> lock(impl_->run_mutex);
+  return impl_->run_ended.wait_for(lock, grace, [&] { return !impl_->running; });
 }
 
 }  // namespace sfit::server

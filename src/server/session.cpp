@@ -201,6 +201,9 @@ void Session::apply(const Change& c, bool forward) {
       return;
     case K::kInsertRow:
     case K::kDeleteRow: {
+      if (fit_->rows().weighted())  // as IncrementalFit's edits: refused, not weights dropped
+        throw Error(ErrorCode::kUsage, "edits of weighted rows are not supported yet",
+                    Place{.option = "weights"});
       const bool insert = (c.kind == K::kInsertRow) == forward;
       const std::vector<Point>& points = c.kind == K::kInsertRow ? c.after : c.before;
       auto next = std::make_unique<IncrementalFit>(

@@ -3,6 +3,7 @@
 // the new surface. docs/editor.md describes the page and the JSON API.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -41,17 +42,23 @@ class EditorServer {
   const std::string& token() const;
   /// http://127.0.0.1:PORT/?token=TOKEN
   std::string url() const;
-  /// Serves until stop() (thread-safe, callable from any thread).
+  /// Serves until stop() (thread-safe, callable from any thread); returns once every
+  /// request under way has ended.
   void run();
   void stop();
+  /// stop(), then waits up to `grace` for run() to return: false when a request (a long
+  /// refit) is still under way; the caller may then end the process without waiting for it.
+  bool stop_within(std::chrono::milliseconds grace);
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
-/// Serves until SIGINT or SIGTERM, then returns (the signals are blocked in every thread and
-/// waited for, so the server ends cleanly). `on_ready` runs once the server listens.
-void serve_until_signal(EditorServer& server, const std::function<void()>& on_ready);
+/// Serves until SIGINT or SIGTERM, then stops (the signals are blocked in every thread and
+/// waited for). `on_ready` runs once the server listens. Returns true when every request
+/// ended within 1.5 s of the signal; false when one (a long refit) still runs: its thread is
+/// left running and the caller must end the process promptly (std::_Exit), as `sfit edit` does.
+bool serve_until_signal(EditorServer& server, const std::function<void()>& on_ready);
 
 }  // namespace sfit::server
