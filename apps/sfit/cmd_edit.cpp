@@ -51,6 +51,8 @@ int run_edit(const EditArgs& a) {
   server::EditorConfig config;
   config.input = a.input;
   config.options = checked.options;
+  note_closed_rows(in, config.options.closed_u, !a.closed.empty(), &config.closed_note);
+  config.units = in.units.empty() ? a.units : in.units;
   config.options.tolerance = checked.tolerance(in.rows);
   config.rows = std::move(in.rows);
   config.port = a.port;
