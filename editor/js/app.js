@@ -132,6 +132,7 @@ hook.rows = () => S.rows;
 hook.selected = () => S.selected;
 hook.pick = drag.pick;
 hook.refresh = refresh;
+hook.viewFrom = (dir) => view.fitView(false, dir);  // the whole data seen from direction `dir`
 hook.constraint = constraintShown;
 hook.screenOfPoint = (p) => view.screenOf(p);
 

@@ -63,7 +63,11 @@ export function rowPlaneNormal(row) {
   const [vals, V] = eigenSym3(C);
   const order = [0, 1, 2].sort((x, y) => vals[x] - vals[y]);
   if (!(vals[order[1]] > 1e-10 * vals[order[2]])) return null;
-  return new THREE.Vector3(V[0][order[0]], V[1][order[0]], V[2][order[0]]).normalize();
+  const n = new THREE.Vector3(V[0][order[0]], V[1][order[0]], V[2][order[0]]).normalize();
+  // A station's plane is x = const up to round-off: snapped to the axis, x is kept exactly.
+  for (let a = 0; a < 3; a++)
+    if (Math.abs(n.getComponent(a)) > 1 - 1e-12) return new THREE.Vector3(...[0, 1, 2].map((b) => (b === a ? 1 : 0)));
+  return n;
 }
 
 /// The unit surface normal at the point's parameters (finite differences of the surface).
@@ -95,6 +99,14 @@ export function constraintFor(mode, row, index) {
   }
   if (AXES[mode]) return { kind: "line", d: new THREE.Vector3(...AXES[mode]), label: `along ${mode}`, colour: [0xff5050, 0x50ff50, 0x5080ff][Object.keys(AXES).indexOf(mode)] };
   return { kind: "plane", n: viewNormal(), label: "view plane" };
+}
+
+function keptAxes(c) {
+  const v = c.kind === "plane" ? c.n : c.d;
+  const axis = [0, 1, 2].find((a) => Math.abs(v.getComponent(a)) === 1 &&
+    [0, 1, 2].every((b) => b === a || v.getComponent(b) === 0));
+  if (axis === undefined) return [];
+  return c.kind === "plane" ? [axis] : [0, 1, 2].filter((b) => b !== axis);
 }
 
 function targetOn(c, origin, ray) {
@@ -154,6 +166,9 @@ canvas.addEventListener(moveEvent, (e) => {
   const q = targetOn(d.c, d.origin, rayOf(e));
   if (!q) return;
   const to = global(q);
+  // Coordinates the constraint keeps (an axis plane's, an axis line's others) are kept
+  // exactly, not recomputed through the ray (the view's offset and round-off).
+  for (const a of keptAxes(d.c)) to[a] = d.start[a];
   setPoint(d.row, d.index, to);
   d.last = { row: d.row, index: d.index, to };
   hook.moves.push(e.timeStamp);

@@ -287,7 +287,7 @@ export function showConstraint(c, origin) {
   const size = S.diagonal * 0.18;
   if (c.kind === "plane") {
     const g = new THREE.PlaneGeometry(size, size);
-    gizmo = new THREE.Mesh(g, new THREE.MeshBasicMaterial({ color: 0x40a0ff, transparent: true, opacity: 0.22,
+    gizmo = new THREE.Mesh(g, new THREE.MeshBasicMaterial({ color: 0x40a0ff, transparent: true, opacity: 0.3,
       side: THREE.DoubleSide, depthWrite: false }));
     gizmo.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), c.n);
   } else {

@@ -54,7 +54,7 @@ window.addEventListener("resize", resize);
 
 // Frames the data: on the first state from a fixed direction, afterwards ("F") from the
 // current direction; the whole box in view, whatever the user did to the camera.
-export function fitView(first) {
+export function fitView(first, from) {
   const { lo, hi } = boxOf(S.rows);
   if (first) {
     S.centre = [0, 1, 2].map((a) => (lo[a] + hi[a]) / 2);
@@ -62,7 +62,7 @@ export function fitView(first) {
   }
   const diag = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || S.diagonal;
   const target = new THREE.Vector3(...[0, 1, 2].map((a) => (lo[a] + hi[a]) / 2 - S.centre[a]));
-  const dir = first || !Number.isFinite(camera.position.x)
+  const dir = from ? new THREE.Vector3(...from).normalize() : first || !Number.isFinite(camera.position.x)
     ? new THREE.Vector3(0.7, -0.85, 0.65).normalize()
     : camera.position.clone().sub(controls.target).normalize();
   if (!(dir.lengthSq() > 0.5)) dir.set(0.7, -0.85, 0.65).normalize();
