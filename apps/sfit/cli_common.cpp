@@ -251,7 +251,11 @@ std::string units_of_outputs(const std::string& given, const Input& in) {
   return given;
 }
 
-void note_closed_rows(const Input& in, bool& closed_u, bool closed_given) {
+void note_closed_rows(const Input& in, bool& closed_u, bool closed_given, std::string* note) {
+  const auto say = [note](const std::string& text) {
+    cli::say(text);
+    if (note) *note = text;
+  };
   if (closed_u || in.rows.size() < 2) return;
   const bool cad_closed =
       !in.closed_rows.empty() &&

@@ -67,7 +67,8 @@ Input read_input(const std::string& path);
 /// else mm; warns when --units differs from the input's unit (coordinates are not converted).
 std::string units_of_outputs(const std::string& given, const Input& in);
 
-void note_closed_rows(const Input& in, bool& closed_u, bool closed_given);
+void note_closed_rows(const Input& in, bool& closed_u, bool closed_given,
+                      std::string* note = nullptr);
 
 /// True when messages should be printed (not --quiet).
 extern bool verbose;

@@ -23,3 +23,4 @@ export const save = () => call("POST", "/api/save", {});
 export const exportBeside = (format) => call("POST", "/api/export", { format });
 export const downloadUrl = (format) =>
   `/api/export?format=${encodeURIComponent(format)}&token=${encodeURIComponent(token)}`;
+export const search = (o) => call("POST", "/api/search", o || {});

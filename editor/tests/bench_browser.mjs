@@ -45,6 +45,8 @@ const results = [];
 for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(M / 3), Math.floor(N / 4)]]) {
   await page.evaluate(() => { window.sfitEditor.latencies = []; window.sfitEditor.moves = []; });
   const s = await page.evaluate((r, i) => window.sfitEditor.screenOf(r, i), row, index);
+  await page.mouse.click(s.x, s.y);  // select, then drag
+  await page.waitForFunction(() => window.sfitEditor.selected() !== null);
   await page.mouse.move(s.x, s.y);
   await page.mouse.down();
   const moves = 60;

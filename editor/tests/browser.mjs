@@ -25,12 +25,14 @@ export async function loadPuppeteer() {
   }
 }
 
-/// Starts `sfit edit` on a copy of `rows` in a fresh folder; resolves with {url, port, token,
-/// dir, input, proc, stop()} once the server prints its address.
-export function startEditor(sfit, rows, extra = []) {
-  const dir = mkdtempSync(join(tmpdir(), "sfit-edit-test-"));
-  const input = join(dir, basename(rows));
-  copyFileSync(rows, input);
+/// Starts `sfit edit` on a copy of `rows` in a fresh folder (`inPlace`: on `rows` itself, e.g.
+/// a second editor of the same file); resolves with {url, port, token, dir, input, proc,
+/// stop()} once the server prints its address.
+export function startEditor(sfit, rows, extra = [], { inPlace = false } = {}) {
+  const dir = inPlace ? null : mkdtempSync(join(tmpdir(), "sfit-edit-test-"));
+  const input = inPlace ? rows : join(dir, basename(rows));
+  if (!inPlace) copyFileSync(rows, input);
+  const cleanup = () => { if (dir) rmSync(dir, { recursive: true, force: true }); };
   const proc = spawn(sfit, ["edit", input, "--no-browser", ...extra], { stdio: ["ignore", "ignore", "pipe"] });
   let err = "";
   const exited = new Promise((res) => proc.on("exit", (code, signal) => res({ code, signal })));
@@ -38,7 +40,7 @@ export function startEditor(sfit, rows, extra = []) {
     const timer = setTimeout(() => reject(new Error("sfit edit did not start: " + err)), 60000);
     exited.then((r) => {
       clearTimeout(timer);
-      rmSync(dir, { recursive: true, force: true });
+      cleanup();
       reject(new Error(`sfit edit exited ${r.code}: ${err}`));
     });
     proc.stderr.on("data", (d) => {
@@ -51,7 +53,7 @@ export function startEditor(sfit, rows, extra = []) {
         async stop() {
           proc.kill("SIGTERM");
           const r = await exited;
-          rmSync(dir, { recursive: true, force: true });
+          cleanup();
           return r;
         },
       });
@@ -76,4 +78,16 @@ export async function launch(puppeteer) {
   const close = browser.close.bind(browser);
   browser.close = async () => { await close(); rmSync(profile, { recursive: true, force: true }); };
   return browser;
+}
+
+/// Opens the editor at `url` in a new page of `browser`; page errors go to `errors`.
+export async function openPage(browser, url, errors) {
+  const page = await browser.newPage();
+  page.on("pageerror", (e) => errors.push(e.message));
+  await page.goto(url);
+  await page.waitForFunction(() => (window.sfitEditor && window.sfitEditor.ready) || window.sfitEditorError,
+    { timeout: 60000 });
+  const failed = await page.evaluate(() => window.sfitEditorError || null);
+  if (failed) throw new Error("the page did not start: " + failed);
+  return page;
 }

@@ -84,6 +84,7 @@ test("dragging a point with the mouse refits: the point moved, every point withi
   const before = initial.rows[row][index];
   const v0 = await page.evaluate(() => window.sfitEditor.state.version);
   const s = await page.evaluate((r, i) => window.sfitEditor.screenOf(r, i), row, index);
+  await page.mouse.click(s.x, s.y);  // select, then drag
   await page.mouse.move(s.x, s.y);
   await page.mouse.down();
   for (let k = 1; k <= 12; k++) {

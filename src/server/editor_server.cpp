@@ -2,6 +2,9 @@
 #include "api_json.h"
 #include "assets.h"
 #include "drag_steps.h"
+#include "drag_watch.h"
+#include "file_lock.h"
+#include "hold.h"
 #include "save_file.h"
 #include "session.h"
 #include "sfit/error.h"
@@ -84,6 +87,8 @@ struct EditorServer::Impl {
   std::mutex run_mutex;  // run() under way (stop_within() waits for its end)
   std::condition_variable run_ended;
   bool running = false;
+  FileLock file_lock{config.input};  // a second editor of INPUT opens read-only
+  DragWatch watch{mutex, session, std::chrono::milliseconds(1500)};  // a drag whose page left
 
   explicit Impl(EditorConfig c)
       : config(std::move(c)), session(std::move(config.rows), config.options) {
@@ -111,6 +116,14 @@ struct EditorServer::Impl {
     j["exports"] = formats();
     j["saved"] = saved_once;
     j["three"] = have_three();
+    j["read_only"] = !file_lock.writable();
+    j["lock"] = file_lock.why();
+    j["options"]["hold"] = held(session.options());
+    j["units"] = config.units;
+    // The rows look closed and are fitted open: the page offers closed u in one click.
+    j["closed_hint"] = config.closed_note.empty() || session.options().closed_u
+                           ? json(nullptr)
+                           : json(config.closed_note);
     return j;
   }
 
@@ -179,6 +192,10 @@ struct EditorServer::Impl {
     // Headers and body go out as separate writes: without TCP_NODELAY, Nagle's algorithm and
     // the client's delayed ACK add some 40 ms to every response.
     http.set_tcp_nodelay(true);
+    // A drag's client is there while its edits come (a page's polling does not count).
+    http.set_logger([this](const httplib::Request& req, const httplib::Response&) {
+      if (req.path == "/api/edit") watch.touch();
+    });
     // httplib's default also sets SO_REUSEPORT, which would let a second editor bind the same
     // port and share its connections: only SO_REUSEADDR (a port in TIME_WAIT may be reused).
     http.set_socket_options([](socket_t sock) {
@@ -294,13 +311,21 @@ struct EditorServer::Impl {
     http.Post("/api/options", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const json body = body_of(req);
-        session.set_options(options_from_json(body, session.options()), phase_of(body));
+        session.set_options(options_with_hold(body, session, config.options.method),
+                            phase_of(body));
         reply(res, 200, state(true));
+      });
+    });
+    http.Post("/api/search", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        reply(res, 200, search_without_hold(body_of(req), session, config.options.method));
       });
     });
     http.Post("/api/save", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         body_of(req);
+        if (!file_lock.writable())
+          throw Error(ErrorCode::kUsage, file_lock.why(), Place{.option = "save"});
         if (lower(io::extension_of(config.input)) != "rows")
           throw Error(ErrorCode::kUsage,
                       "save writes .rows text and '" + config.input +

@@ -27,6 +27,8 @@ struct EditorConfig {
   std::string token;   ///< empty: a fresh random one
   ExportWriter write;  ///< export writer; may be empty (then only JSON is exported)
   std::vector<std::string> export_formats;  ///< extensions `write` handles ("json", "step", ...)
+  std::string units;        ///< the data's length unit (as --units states it), shown with T
+  std::string closed_note;  ///< the CLI's note on closed rows (the page offers closed u), or ""
 };
 
 class EditorServer {
