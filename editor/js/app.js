@@ -628,7 +628,25 @@ requestAnimationFrame(loop);
 // Nothing sent, in flight or waiting to be drawn, and the last frame drawn.
 Object.defineProperty(hook, "idle", {
   get: () => hook.ready && !inFlight && !pending && !drag && !incoming && !optInFlight && !needsRender && !drawing });
-refresh().then(() => { hook.ready = true; }, (e) => {
+// The controls' limits and choices: the library's option table (GET /api/options-table).
+async function applyOptionsTable() {
+  const table = await api.getOptionsTable();
+  const spec = (name) => table.find((o) => o.name === name);
+  for (const id of ["degU", "degV"]) {
+    $(id).min = spec("degree").min;
+    $(id).max = spec("degree").max;
+  }
+  for (const [id, name] of [["params", "parameters"], ["search", "search"]]) {
+    const keep = $(id).value;
+    $(id).replaceChildren(...spec(name).choices.filter((c) => c !== "known").map((c) => {
+      const o = document.createElement("option");
+      o.textContent = c;
+      return o;
+    }));
+    if (keep) $(id).value = keep;
+  }
+}
+Promise.all([applyOptionsTable(), refresh()]).then(() => { hook.ready = true; }, (e) => {
   $("status").className = "status bad";
   $("status").textContent = "cannot reach the server: " + e.message;
 });

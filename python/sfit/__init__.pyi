@@ -43,7 +43,7 @@ class Surface:
     def __call__(self, u: ArrayLike, v: ArrayLike, grid: bool = False, threads: int = 0) -> npt.NDArray[np.float64]: ...
     def derivative(self, u: ArrayLike, v: ArrayLike, du: int = 1, dv: int = 0, grid: bool = False, threads: int = 0) -> npt.NDArray[np.float64]: ...
     def normal(self, u: ArrayLike, v: ArrayLike, grid: bool = False, threads: int = 0) -> npt.NDArray[np.float64]: ...
-    def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm") -> None: ...
+    def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm", obj_freeform: bool = False, normals: str = "auto") -> None: ...
     def to_json(self) -> dict[str, Any]: ...
 
 class Fit:
@@ -55,7 +55,7 @@ class Fit:
     v: npt.NDArray[np.float64]  # (M,): v of every row
     points: npt.NDArray[np.float64]  # (P, 3)
     row_sizes: list[int]
-    def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm") -> None: ...
+    def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm", obj_freeform: bool = False, normals: str = "auto") -> None: ...
 
 def fit(
     rows: Rows,
@@ -68,7 +68,13 @@ def fit(
     threads: int = 0,
     *,
     search: str = "fast",
-    parameters: str = "paper",
+    parameters: str = "auto",
+    method: str = "surface",
+    norm: str = "auto",
+    seam: str = "align",
+    orient: str = "auto",
+    fold_guard: bool = True,
+    rerepresent: str = "paper",
     row_count_hints: Sequence[int] | None = None,
     column_count_hints: Sequence[int] | None = None,
     progress: Callable[[str, int, int], None] | None = None,
@@ -111,9 +117,16 @@ def fit_curve(
     degree: int = 3,
     closed: bool = False,
     search: str = "fast",
-    parameters: str = "paper",
+    parameters: str = "auto",
+    method: str = "surface",
+    norm: str = "auto",
+    seam: str = "align",
+    orient: str = "auto",
+    fold_guard: bool = True,
+    rerepresent: str = "paper",
     hint: int = 0,
 ) -> CurveFit: ...
 def load_rows(path: str) -> list[npt.NDArray[np.float64]]: ...
 def load_surface(path: str) -> Surface: ...
 def output_formats() -> list[str]: ...
+def fit_options() -> list[dict[str, Any]]: ...
