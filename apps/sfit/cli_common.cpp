@@ -87,6 +87,9 @@ CLI::Option* add_table_option(CLI::App* c, std::string_view name, std::string& v
   // name the known values too).
   if (s.type == OptionType::kChoice && s.group == OptionGroup::kFit) {
     std::vector<std::string> allowed(s.choices.begin(), s.choices.end());
+    o->check(CLI::Validator(  // before the choices: an empty value says so (harden_options)
+        [](std::string& v) { return v.empty() ? std::string("empty value") : std::string(); }, "",
+        "non-empty"));
     o->check(CLI::IsMember(allowed));
   }
   return o;
