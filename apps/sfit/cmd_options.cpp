@@ -25,9 +25,11 @@ void add_options_command(CLI::App& app, Runner& run) {
         std::puts(io::option_table_json().dump(2).c_str());
       } else {
         for (const OptionSpec& s : option_table())
-          std::printf("%-16s %-14s %-6s %-9s %s\n", std::string(s.flag).c_str(),
-                      std::string(s.name).c_str(), std::string(to_string(s.group)).c_str(),
-                      std::string(to_string(s.type)).c_str(), full_help(s).c_str());
+          std::printf(
+              "%-16s %-14s %-6s %-9s %s\n", std::string(s.flag).c_str(),
+              std::string(s.name).c_str(), std::string(to_string(s.group)).c_str(),
+              std::string(to_string(s.type)).c_str(),
+              (full_help(s) + (s.choices.empty() ? "" : "; one of " + choice_list(s))).c_str());
       }
       return 0;
     };
