@@ -23,7 +23,8 @@ set(_sfit_destinations
 set_target_properties(sfit_io PROPERTIES EXPORT_NAME io)
 install(TARGETS sfit sfit_io EXPORT sfitTargets ${_sfit_destinations})
 install(DIRECTORY include/sfit DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-        PATTERN render EXCLUDE PATTERN exchange EXCLUDE)
+        PATTERN render EXCLUDE PATTERN exchange EXCLUDE
+        PATTERN files.h EXCLUDE)  # sfit_files: the CLI's and Python's, not installed
 install(FILES ${PROJECT_BINARY_DIR}/include/sfit/version.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sfit)
 install(EXPORT sfitTargets NAMESPACE sfit:: DESTINATION ${SFIT_CMAKE_DIR})

@@ -1,4 +1,5 @@
 #include "cli_common.h"
+#include "outputs.h"
 
 #include <fmt/format.h>
 
@@ -10,15 +11,10 @@
 
 #include "sfit/error.h"
 #include "sfit/fit_limits.h"
-#include "sfit/io/csv_reader.h"
 #include "sfit/io/file_names.h"
 #include "sfit/io/formats.h"
-#include "sfit/io/rows_binary.h"
-#include "sfit/io/rows_reader.h"
 #include "sfit/option_names.h"
-#ifdef SFIT_HAVE_EXCHANGE
-#include "sfit/exchange/readers.h"
-#endif
+#include "sfit/options.h"
 
 namespace sfit::cli {
 
@@ -70,93 +66,97 @@ Point CheckedFitOptions::tolerance(const Rows& rows) const {
   return relative() ? relative_tolerance(rows, fraction) : absolute;
 }
 
+const OptionSpec& option_spec(std::string_view name) {
+  const OptionSpec* s = find_option(name);
+  if (!s) throw Error(ErrorCode::kInternal, "no option " + std::string(name) + " in the table");
+  return *s;
+}
+
+int table_default_int(std::string_view name) {
+  return std::stoi(std::string(option_spec(name).default_value));
+}
+
+std::string option_help(std::string_view name) {
+  return full_help(option_spec(name));
+}
+
+CLI::Option* add_table_option(CLI::App* c, std::string_view name, std::string& value) {
+  const OptionSpec& s = option_spec(name);
+  CLI::Option* o = c->add_option(std::string(s.flag), value, full_help(s));
+  // The fit's choices are checked here; the output options by their writers (whose messages
+  // name the known values too).
+  if (s.type == OptionType::kChoice && s.group == OptionGroup::kFit) {
+    std::vector<std::string> allowed(s.choices.begin(), s.choices.end());
+    o->check(CLI::Validator(  // before the choices: an empty value says so (harden_options)
+        [](std::string& v) { return v.empty() ? std::string("empty value") : std::string(); }, "",
+        "non-empty"));
+    o->check(CLI::IsMember(allowed));
+  }
+  return o;
+}
+
+CLI::Option* add_table_flag(CLI::App* c, std::string_view name, bool& value) {
+  const OptionSpec& s = option_spec(name);
+  return c->add_flag(std::string(s.flag), value, full_help(s));
+}
+
 void add_fit_option_flags(CLI::App* c, FitOptionArgs& a) {
-  c->add_option("--degree", a.degree,
-                fmt::format("degree in both directions, {} ... {}", kMinFitDegree, kMaxFitDegree))
-      ->default_val(3);
-  c->add_option("--degree-u", a.degree_u, "degree along the rows (overrides --degree)");
-  c->add_option("--degree-v", a.degree_v, "degree across the rows (overrides --degree)");
-  c->add_option("--tol", a.tol,
-                "tolerance T or Tx,Ty,Tz, absolute, >= 0 (0 interpolates); "
-                "default 1e-3 of the bounding-box diagonal");
-  c->add_option("--tol-rel", a.tol_rel, "tolerance as a fraction of the bounding-box diagonal");
-  c->add_option("--closed", a.closed,
-                "closed directions: u (each row is a closed contour), v (the rows form a "
-                "closed sequence), uv (both), none");
-  c->add_option("--search", a.search, "count search: fast (default) or linear (the paper's)")
-      ->check(CLI::IsMember({"fast", "linear"}));
-  c->add_option("--parameters", a.parameters,
-                "how points get parameters, along and across the rows: paper (SFIT01's, by the "
-                "point's index), uniform (index), chord (chord length), centripetal, fewest "
-                "(tries the four, keeps the fewest control points), or auto (default: the "
-                "four with --method surface, paper with --method sfit01)")
-      ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal", "fewest", "auto"}));
-  c->add_option("--method", a.method,
-                "surface (default: the fewest nu x nv whose surface holds T, searched over all "
-                "points at once; never more than sfit01) or sfit01 (the paper's two stages)");
-  c->add_option("--norm", a.norm,
-                "with --method surface: l2 (least squares), linf (minimax), auto (default: "
-                "least squares, minimax where it misses T by a little)");
-  c->add_option("--seam", a.seam,
-                "closed rows: align (default: each row starts where its neighbour starts, "
-                "same direction) or keep (as given: the paper's scheme)");
-  c->add_option("--orient", a.orient,
-                "auto (default: a row running against its neighbour is reversed) or keep");
-  c->add_flag("--no-fold-guard", a.no_fold_guard,
-              "keep a surface that folds between rows, at the degree asked for (the guard "
-              "tries other rules across the rows, then one degree lower across them; with "
-              "--seam keep --orient keep: the paper's scheme exactly)");
-  c->add_option("--rerepresent", a.rerepresent,
-                "where --method sfit01's re-representation samples each row curve: paper "
-                "(default) or arc_length (equal arc length, open rows)");
-  c->add_option("--threads", a.threads,
-                "threads, 0 (all cores) ... " + std::to_string(kMaxThreads) +
-                    "; results do not depend on it");
+  // The flags, their help, allowed values and defaults: the library's option table
+  // (sfit/options.h), in its order; only the binding to FitOptionArgs is here.
+  for (const OptionSpec& s : option_table()) {
+    if (s.group != OptionGroup::kFit) continue;
+    const std::string flag(s.flag), help = full_help(s);
+    const std::string_view n = s.name;
+    if (n == "degree") {
+      c->add_option(flag, a.degree, help);
+    } else if (n == "degree_u") {
+      c->add_option(flag, a.degree_u, help);
+    } else if (n == "degree_v") {
+      c->add_option(flag, a.degree_v, help);
+    } else if (n == "tol") {
+      c->add_option(flag, a.tol, help);
+    } else if (n == "tol_rel") {
+      c->add_option(flag, a.tol_rel, help);
+    } else if (n == "threads") {
+      c->add_option(flag, a.threads, help);
+    } else if (n == "fold_guard") {
+      c->add_flag(flag, a.no_fold_guard, help);
+    } else if (s.type == OptionType::kChoice) {
+      std::string& value = a.choices[std::string(n)];
+      if (n != "closed") value = s.default_value;  // closed: "" is "not given"
+      add_table_option(c, n, value);
+    } else {
+      throw Error(ErrorCode::kInternal, "the CLI binds no flag for option " + std::string(n));
+    }
+  }
 }
 
 CheckedFitOptions check_fit_options(const FitOptionArgs& a) {
-  CheckedFitOptions c;
-  FitOptions& o = c.options;
-  check_degree(a.degree, "--degree");
-  if (a.degree_u) check_degree(*a.degree_u, "--degree-u");
-  if (a.degree_v) check_degree(*a.degree_v, "--degree-v");
-  o.degree_u = a.degree_u.value_or(a.degree);
-  o.degree_v = a.degree_v.value_or(a.degree);
-  if (!parse_closed(a.closed, o.closed_u, o.closed_v))
-    throw Error(ErrorCode::kUsage, "'" + a.closed + "' is not one of u, v, uv, none",
-                Place{.option = "--closed"});
-  // The library's names; "known" (counts given as the answer) is for callers with hints.
-  if (a.search == "known" || !parse_count_search(a.search, o.search))
-    throw Error(ErrorCode::kUsage, "'" + a.search + "' is not one of fast, linear",
-                Place{.option = "--search"});
-  if (!parse_parametrization(a.parameters, o.parametrization))
+  // Every check is the library's (set_fit_option: the table's limits and allowed values).
+  FitSettings st;
+  set_fit_option(st, "degree", static_cast<long long>(a.degree), "--degree");
+  if (a.degree_u) set_fit_option(st, "degree_u", static_cast<long long>(*a.degree_u), "--degree-u");
+  if (a.degree_v) set_fit_option(st, "degree_v", static_cast<long long>(*a.degree_v), "--degree-v");
+  for (const auto& [name, value] : a.choices) {
+    const std::string flag(option_spec(name).flag);
+    if (!value.empty()) set_fit_option(st, name, value, flag);
+  }
+  // "known" (counts given as the answer) is for callers with count hints.
+  if (st.options.search == CountSearch::kKnown)
     throw Error(ErrorCode::kUsage,
-                "'" + a.parameters + "' is not one of paper, uniform, chord, centripetal, fewest",
-                Place{.option = "--parameters"});
-  if (!parse_fit_method(a.method, o.method))
-    throw Error(ErrorCode::kUsage, "'" + a.method + "' is not a method (surface, sfit01)",
-                Place{.option = "--method"});
-  if (!parse_fit_norm(a.norm, o.norm))
-    throw Error(ErrorCode::kUsage, "'" + a.norm + "' is not a norm (l2, linf, auto)",
-                Place{.option = "--norm"});
-  o.fold_guard = !a.no_fold_guard;
-  if (!parse_seam_mode(a.seam, o.seam))
-    throw Error(ErrorCode::kUsage, "'" + a.seam + "' is not one of align, keep",
-                Place{.option = "--seam"});
-  if (!parse_resampling(a.rerepresent, o.rerepresentation))
-    throw Error(ErrorCode::kUsage, "'" + a.rerepresent + "' is not one of paper, arc_length",
-                Place{.option = "--rerepresent"});
-  if (!parse_orient_mode(a.orient, o.orient))
-    throw Error(ErrorCode::kUsage, "'" + a.orient + "' is not one of auto, keep",
-                Place{.option = "--orient"});
-  check_threads(a.threads, "--threads");
-  o.threads = a.threads;
+                "'known' takes count hints as the answer, which the command line does not give",
+                Place{.option = "--search"});
+  set_fit_option(st, "fold_guard", !a.no_fold_guard, "--no-fold-guard");
+  set_fit_option(st, "threads", static_cast<long long>(a.threads), "--threads");
   if (a.tol && a.tol_rel)
     throw Error(ErrorCode::kUsage, "give --tol or --tol-rel, not both",
                 Place{.option = "--tol-rel"});
-  if (a.tol_rel) check_tolerance_fraction(*a.tol_rel, "--tol-rel");
-  c.fraction = a.tol_rel.value_or(kDefaultToleranceFraction);
-  if (a.tol) c.absolute = parse_tolerance(*a.tol, "--tol");
+  if (a.tol_rel) set_fit_option(st, "tol_rel", *a.tol_rel, "--tol-rel");
+  if (a.tol) set_fit_option(st, "tol", parse_tolerance(*a.tol, "--tol"), "--tol");
+  CheckedFitOptions c;
+  c.options = st.options;
+  c.fraction = st.tol_rel.value_or(kDefaultToleranceFraction);
+  if (st.tol) c.absolute = *st.tol;
   return c;
 }
 
@@ -193,37 +193,11 @@ Point parse_tolerance(const std::string& text, const std::string& option) {
 }
 
 Input read_input(const std::string& path) {
-  // Dispatch through the one format registry (sfit/io/formats.h); '-' and unknown
-  // extensions are .rows text.
-  const std::string ext = path == "-" ? "rows" : io::extension_of(path);
-  const io::Format* f = io::find_format(ext);
-  const bool rows_format =
-      f && f->reads && (f->kind == io::FormatKind::kRows || f->part == io::FormatPart::kCad);
-  if (rows_format && !f->available)
-    throw Error(ErrorCode::kUsage,
-                std::string(f->name) + " input needs " + std::string(io::part_name(f->part)) +
-                    ", which this build of sfit lacks",
-                Place{.file = path});
-  const io::FormatId id = rows_format ? f->id : io::FormatId::kRows;
-  if (id == io::FormatId::kCsv) {
-    auto r = io::read_csv(path);
-    return Input{std::move(r.rows), std::move(r.first_line), std::move(r.name)};
-  }
-#ifdef SFIT_HAVE_EXCHANGE
-  if (id == io::FormatId::kStep || id == io::FormatId::kIges) {
-    auto r = exchange::read_sections(path);
-    say(path + ": lengths in " + r.units +
-        (r.units.find(' ') == std::string::npos ? " (the file's own unit, not converted)" : ""));
-    return Input{std::move(r.rows), std::move(r.first_line), path, std::move(r.closed),
-                 std::move(r.units)};
-  }
-#endif
-  if (id == io::FormatId::kBinaryRows) {
-    auto r = io::read_rows_binary(path);
-    return Input{std::move(r.rows), std::move(r.first_line), std::move(r.name)};
-  }
-  auto r = io::read_rows(path);
-  return Input{std::move(r.rows), std::move(r.first_line), std::move(r.name)};
+  Input in = files::read_input(path);
+  if (!in.units.empty())  // STEP/IGES
+    say(path + ": lengths in " + in.units +
+        (in.units.find(' ') == std::string::npos ? " (the file's own unit, not converted)" : ""));
+  return in;
 }
 
 namespace {

@@ -2,9 +2,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <map>
 #include <optional>
 #include <string>
 
+#include "sfit/files.h"
 #include "sfit/rows.h"
 #include "sfit/surface_fit.h"
 
@@ -15,24 +17,36 @@ namespace sfit::cli {
 void harden_options(CLI::App& app);
 
 /// The fit's options as the command line gives them; 'fit', 'edit' and 'render-rows' hold them
-/// and both check them with check_fit_options().
+/// and both check them with check_fit_options(). Flags, help and defaults: the library's option
+/// table (sfit/options.h), set by add_fit_option_flags().
+/// The table's default of the whole-number option `name` (sfit/options.h).
+int table_default_int(std::string_view name);
 struct FitOptionArgs {
-  int degree = 3;
+  int degree = table_default_int("degree");
   std::optional<int> degree_u, degree_v;  // unset: --degree
   std::optional<std::string> tol;
   std::optional<double> tol_rel;
-  std::string closed;
-  std::string search = "fast";
-  std::string parameters = "auto";
-  std::string method = "surface", norm = "auto";
-  std::string seam = "align", orient = "auto", rerepresent = "paper";  // docs/seams.md
-  bool no_fold_guard = false;                                          // docs/seams.md
-  int threads = 0;
+  /// The choice options by table name (closed, search, parameters, method, norm, seam, orient,
+  /// rerepresent); "" : not given.
+  std::map<std::string, std::string> choices;
+  bool no_fold_guard = false;  // docs/seams.md
+  int threads = table_default_int("threads");
+  /// --closed as given ("" : not given).
+  const std::string& closed() const {
+    static const std::string none;
+    auto it = choices.find("closed");
+    return it == choices.end() ? none : it->second;
+  }
 };
-/// Adds --degree, --degree-u, --degree-v, --tol, --tol-rel, --closed, --search, --parameters,
-/// --method, --norm, --seam, --orient, --no-fold-guard, --rerepresent and --threads to `c`, bound
-/// to `a` (fit and edit share them).
+/// Adds the table's fit options (OptionGroup::kFit: --degree ... --threads) to `c`, bound to
+/// `a` (fit, edit and render-rows share them).
 void add_fit_option_flags(CLI::App* c, FitOptionArgs& a);
+/// The table's option `name`: its full help (help, range, default) for a CLI flag.
+std::string option_help(std::string_view name);
+/// Adds the table's kChoice option `name` (its flag, help and allowed values) bound to `value`.
+CLI::Option* add_table_option(CLI::App* c, std::string_view name, std::string& value);
+/// Adds the table's kFlag option `name` bound to `value`.
+CLI::Option* add_table_flag(CLI::App* c, std::string_view name, bool& value);
 /// Checked options: `options` has everything but the tolerance, which comes from the data
 /// unless it was given absolutely (tolerance()).
 struct CheckedFitOptions {
@@ -49,15 +63,9 @@ CheckedFitOptions check_fit_options(const FitOptionArgs& args);
 /// Parses "T" or "Tx,Ty,Tz" (each a finite number >= 0); throws Error(kUsage) naming `option`.
 Point parse_tolerance(const std::string& text, const std::string& option);
 
-/// Reads input rows by extension (.rows, and whatever the exchange part adds: .csv, .step,
-/// .iges); "-" reads .rows from standard input.
-struct Input {
-  Rows rows;
-  std::vector<long> first_line;  ///< line of each row's first point, where the format has lines
-  std::string name;
-  std::vector<bool> closed_rows;  ///< STEP/IGES: the row is a closed curve (empty otherwise)
-  std::string units;              ///< STEP/IGES: the file's length unit (mm, m, in, ...)
-};
+/// Rows of any input format (sfit/files.h).
+using Input = files::Input;
+/// files::read_input(), saying the length unit of a STEP/IGES input.
 Input read_input(const std::string& path);
 
 /// Closed rows the options do not close (a slit in the surface): when every row of a STEP/IGES

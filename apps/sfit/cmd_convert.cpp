@@ -50,16 +50,12 @@ void add_convert_command(CLI::App& app, Runner& run) {
   c->add_option("SURFACE", args->input, "surface file written by 'sfit fit' (.json)")->required();
   c->add_option("-o,--output", args->outputs, "output file(s); the extension picks the format");
   // Mesh outputs; defaults and checks are the library's (docs/meshes.md).
-  c->add_flag("--mesh", args->mesh, "(the default) write .obj as a triangle mesh");
-  c->add_flag("--obj-freeform", args->obj_freeform,
-              "write .obj as the exact free-form B-spline instead (few viewers show it)");
-  c->add_option("--mesh-density", args->mesh_density, mesh_density_help());
-  c->add_option("--normals", args->normals,
-                "mesh normals: auto (outward / up; default), flip, uv (S_u x S_v)");
-  c->add_flag("--fields", args->fields, "add curvature point data, raw and clipped (.vtk/.vts)");
-  c->add_option("--units", args->units,
-                "length unit the STEP/IGES file states (mm, cm, m, km, um, in, ft, mi)")
-      ->default_val("mm");
+  add_table_flag(c, "mesh", args->mesh);
+  add_table_flag(c, "obj_freeform", args->obj_freeform);
+  c->add_option("--mesh-density", args->mesh_density, option_help("mesh_density"));
+  add_table_option(c, "normals", args->normals);
+  add_table_flag(c, "fields", args->fields);
+  add_table_option(c, "units", args->units);
   c->add_flag("-q,--quiet", args->quiet, "print errors only");
   c->footer("Example:\n  sfit convert hull.json -o hull.step -o hull.stl");
   c->callback([args, &run] { run = [args] { return run_convert(*args); }; });

@@ -31,7 +31,6 @@ struct FitArgs : FitOptionArgs {  // --degree, --tol, --closed, ... (cli_common.
   std::vector<std::string> outputs;
   std::string report;
   bool quiet = false;
-  bool no_fold_guard = false;  // docs/seams.md
   bool mesh = false;
   int mesh_density = 0;
   bool fields = false;
@@ -81,7 +80,7 @@ int run_fit(const FitArgs& a) {
   Input in = read_input(a.input);
   const BoundingBox box = bounding_box(in.rows);
   o.tolerance = checked.tolerance(in.rows);
-  note_closed_rows(in, o.closed_u, !a.closed.empty());
+  note_closed_rows(in, o.closed_u, !a.closed().empty());
   const std::string units = units_of_outputs(a.units, in);
 
   std::size_t lo = SIZE_MAX, hi = 0;
@@ -223,21 +222,15 @@ void add_fit_command(CLI::App& app, Runner& run) {
                     "the summary only");
   c->add_option("--report", args->report, "write the fit report as JSON ('-': standard output)");
   add_fit_option_flags(c, *args);
-  // Mesh outputs (.obj .stl .ply .vtk .vts); defaults and checks are the library's
-  // (sfit/exchange/tessellate.h), see docs/meshes.md.
-  c->add_flag("--mesh", args->mesh, "(the default) write .obj as a triangle mesh");
-  c->add_flag("--obj-freeform", args->obj_freeform,
-              "write .obj as the exact free-form B-spline instead (few viewers show it)");
-  c->add_option("--mesh-density", args->mesh_density, mesh_density_help());
-  c->add_option("--normals", args->normals,
-                "mesh normals: auto (outward for closed surfaces, up for height fields; "
-                "default), flip (the opposite), uv (as the data runs, S_u x S_v)");
-  c->add_flag("--fields", args->fields,
-              "add curvature (raw and clipped) and deviation point data (.vtk/.vts)");
-  c->add_option("--units", args->units,
-                "length unit the STEP/IGES outputs state (mm, cm, m, km, um, in, ft, mi; "
-                "default: a STEP/IGES input's own unit, else mm); coordinates are written "
-                "unchanged");
+  // Mesh and CAD outputs (.obj .stl .ply .vtk .vts .step .igs): flags and help from the
+  // option table (sfit/options.h), checks by the writers (docs/meshes.md).
+  add_table_flag(c, "mesh", args->mesh);
+  add_table_flag(c, "obj_freeform", args->obj_freeform);
+  c->add_option("--mesh-density", args->mesh_density, option_help("mesh_density"));
+  add_table_option(c, "normals", args->normals);
+  add_table_flag(c, "fields", args->fields);
+  // The default "" is the input's own unit, else mm (units_of_outputs()).
+  add_table_option(c, "units", args->units);
 #ifdef SFIT_HAVE_RENDER
   CLI::Option* png = c->add_option("--png", args->pngs,
                                    "draw the fitted surface to a PNG picture (repeat for several; "

@@ -427,14 +427,14 @@ void add_render_commands(CLI::App& app, Runner& run) {
     c->add_option("--row", args->row, "the row to draw, 0-based")->required();
     c->add_option("-o,--output", args->output, "the picture (.png)");
     c->add_option("--degree", args->degree, "degree of the curve, 1 ... 20 (default 3)");
-    c->add_option("--closed", args->closed, "u: the row is a closed contour");
+    c->add_option("--closed", args->choices["closed"], "u: the row is a closed contour");
     c->add_option("--tol", args->tol,
                   "tolerance T or Tx,Ty,Tz of the surface fit (the row gets T/2)");
     c->add_option("--tol-rel", args->tol_rel,
                   "tolerance as a fraction of the data's bounding-box diagonal");
-    c->add_option("--search", args->search, "count search: fast (default) or linear")
+    c->add_option("--search", args->choices["search"], "count search: fast (default) or linear")
         ->check(CLI::IsMember({"fast", "linear"}));
-    c->add_option("--parameters", args->parameters,
+    c->add_option("--parameters", args->choices["parameters"],
                   "paper (default), uniform, chord or centripetal, as sfit fit --parameters")
         ->check(CLI::IsMember({"paper", "uniform", "chord", "centripetal"}));
     c->add_option("--size", args->size, "picture size WIDTHxHEIGHT (default 960x720)");

@@ -15,6 +15,7 @@ void add_fit_command(CLI::App& app, Runner& run);
 void add_convert_command(CLI::App& app, Runner& run);
 void add_pack_command(CLI::App& app, Runner& run);
 void add_formats_command(CLI::App& app, Runner& run);
+void add_options_command(CLI::App& app, Runner& run);
 #ifdef SFIT_HAVE_RENDER
 void add_render_commands(CLI::App& app, Runner& run);
 #endif

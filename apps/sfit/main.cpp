@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   sfit::cli::add_convert_command(app, run);
   sfit::cli::add_pack_command(app, run);
   sfit::cli::add_formats_command(app, run);
+  sfit::cli::add_options_command(app, run);
 #ifdef SFIT_HAVE_RENDER
   sfit::cli::add_render_commands(app, run);
 #endif

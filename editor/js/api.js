@@ -19,6 +19,7 @@ export const edit = (op, rows = true) => call("POST", `/api/edit${rows ? "" : "?
 export const undo = () => call("POST", "/api/undo", {});
 export const redo = () => call("POST", "/api/redo", {});
 export const setOptions = (o) => call("POST", "/api/options", o);
+export const getOptionsTable = () => call("GET", "/api/options-table");
 export const save = () => call("POST", "/api/save", {});
 export const exportBeside = (format) => call("POST", "/api/export", { format });
 export const downloadUrl = (format) =>

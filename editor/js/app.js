@@ -150,7 +150,25 @@ setInterval(async () => {
     if (hook.idle && !S.drag && S.state && st.version !== S.state.version) await refresh();
   } catch (_) { /* the server is gone: the next edit says so */ }
 }, 2000);
-refresh().then(() => { hook.ready = true; }, (e) => {
+// The controls' limits and choices: the library's option table (GET /api/options-table).
+async function applyOptionsTable() {
+  const table = await api.getOptionsTable();
+  const spec = (name) => table.find((o) => o.name === name);
+  for (const id of ["degU", "degV"]) {
+    $(id).min = spec("degree").min;
+    $(id).max = spec("degree").max;
+  }
+  for (const [id, name] of [["params", "parameters"], ["search", "search"]]) {
+    const keep = $(id).value;
+    $(id).replaceChildren(...spec(name).choices.filter((c) => c !== "known").map((c) => {
+      const o = document.createElement("option");
+      o.textContent = c;
+      return o;
+    }));
+    if (keep) $(id).value = keep;
+  }
+}
+Promise.all([applyOptionsTable(), refresh()]).then(() => { hook.ready = true; }, (e) => {
   $("status").className = "status bad";
   $("status").textContent = "cannot reach the server: " + e.message;
 });

@@ -167,6 +167,27 @@ test("options: T, degrees, parameters refit; undo restores the old fit", async (
   assert.deepEqual(r.json.options, initial.options);
 });
 
+test("the option table: the library's, and /api/options checks through it", async () => {
+  const r = await api.get("/api/options-table");
+  assert.equal(r.status, 200, r.text);
+  const spec = (name) => r.json.find((o) => o.name === name);
+  assert.deepEqual([spec("degree").min, spec("degree").max, spec("degree").default], [1, 20, 3]);
+  assert.deepEqual(spec("parameters").choices,
+    ["paper", "uniform", "chord", "centripetal", "fewest", "auto"]);
+  assert.equal(spec("parameters").default, "auto");
+  for (const name of ["method", "norm", "seam", "orient", "rerepresent", "fold_guard", "threads"])
+    assert.ok(spec(name), name);
+  const bad = await api.post("/api/options", { method: "magic" });
+  assert.equal(bad.status, 400);
+  assert.match(bad.json.error, /'magic' is not one of surface, sfit01/);
+  const ok = await api.post("/api/options", { method: "sfit01" });
+  assert.equal(ok.status, 200, ok.text);
+  assert.equal(ok.json.options.method, "sfit01");
+  assertWithinT(ok.json);
+  const back = await api.post("/api/undo", {});
+  assert.deepEqual(back.json.options, initial.options);
+});
+
 test("a drag is one undo step; its quick refits are not final; stale drag steps are skipped", async () => {
   const p = initial.rows[6][4];
   let r;

@@ -59,7 +59,7 @@ class Surface:
         """(u, v) of the nearest point of the surface: numbers for one point, (n,) arrays for (n, 3)."""
     @staticmethod
     def from_knots(knots_u: ArrayLike, knots_v: ArrayLike, control_points: ArrayLike, degree_u: int, degree_v: int, periodic_u: bool = False, periodic_v: bool = False) -> Surface: ...
-    def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm") -> None: ...
+    def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm", obj_freeform: bool = False, normals: str = "auto") -> None: ...
     def to_json(self) -> dict[str, Any]: ...
 
 class Fit:
@@ -71,26 +71,32 @@ class Fit:
     v: npt.NDArray[np.float64]  # (M,): v of every row
     points: npt.NDArray[np.float64]  # (P, 3)
     row_sizes: list[int]
-    def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm") -> None: ...
+    def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm", obj_freeform: bool = False, normals: str = "auto") -> None: ...
 
 def fit(
     rows: Rows,
     tol: PerAxis | None = None,
     *,
-    tol_rel: float | None = None,
-    degree: int | None = None,
+    degree: int = 3,
     degree_u: int | None = None,
     degree_v: int | None = None,
-    closed: str | None = None,
-    search: str | None = None,
-    parameters: str | None = None,
-    threads: int | None = None,
+    tol_rel: float = 0.001,
+    closed: str = "none",
+    search: str = "fast",
+    parameters: str = "auto",
+    method: str = "surface",
+    norm: str = "auto",
+    seam: str = "align",
+    orient: str = "auto",
+    fold_guard: bool = True,
+    rerepresent: str = "paper",
+    threads: int = 0,
     row_count_hints: Sequence[int] | None = None,
     column_count_hints: Sequence[int] | None = None,
     progress: Callable[[str, int, int], None] | None = None,
 ) -> Fit:
     """Fits rows of points ((N_j, 3) arrays, or an (M, N, 3) array; a 4th column: weights)
-    within tolerance T. An option None (the default) is the library's default."""
+    within tolerance T. Every option's default is the library's (sfit.fit_options(), docs/options.md)."""
 
 class IncrementalFit:
     """A fit that follows edits of its rows; each edit equals sfit.fit() of the edited rows."""
@@ -102,15 +108,21 @@ class IncrementalFit:
         self,
         rows: Rows,
         *,
-        tol: PerAxis | None = None,
-        tol_rel: float | None = None,
-        degree: int | None = None,
+        degree: int = 3,
         degree_u: int | None = None,
         degree_v: int | None = None,
-        closed: str | None = None,
-        search: str | None = None,
-        parameters: str | None = None,
-        threads: int | None = None,
+        tol: PerAxis | None = None,
+        tol_rel: float = 0.001,
+        closed: str = "none",
+        search: str = "fast",
+        parameters: str = "auto",
+        method: str = "surface",
+        norm: str = "auto",
+        seam: str = "align",
+        orient: str = "auto",
+        fold_guard: bool = True,
+        rerepresent: str = "paper",
+        threads: int = 0,
         row_count_hints: Sequence[int] | None = None,
         column_count_hints: Sequence[int] | None = None,
         progress: Callable[[str, int, int], None] | None = None,
@@ -143,10 +155,17 @@ def fit_curve(
     degree: int = 3,
     closed: bool = False,
     search: str = "fast",
-    parameters: str = "paper",
+    parameters: str = "auto",
+    method: str = "surface",
+    norm: str = "auto",
+    seam: str = "align",
+    orient: str = "auto",
+    fold_guard: bool = True,
+    rerepresent: str = "paper",
     hint: int = 0,
 ) -> CurveFit: ...
 def load_rows(path: str) -> list[npt.NDArray[np.float64]]:
     """(N_j, 3) arrays, or (N_j, 4) (x, y, z, w) when the file carries weights."""
 def load_surface(path: str) -> Surface: ...
 def output_formats() -> list[str]: ...
+def fit_options() -> list[dict[str, Any]]: ...

@@ -20,25 +20,18 @@ import inspect
 # positional tol), in the order of the binding's option table (python/src/options.cpp). A
 # value None means "the library's default"; test_signatures.py checks this list against the
 # names the compiled fit() accepts.
-FIT_KEYWORDS = (
-    "tol",
-    "tol_rel",
-    "degree",
-    "degree_u",
-    "degree_v",
-    "closed",
-    "search",
-    "parameters",
-    "threads",
-    "row_count_hints",
-    "column_count_hints",
-    "progress",
-)
+# fit()'s keywords that are not options of the library's table: the count hints of
+# search="known" and the progress callback.
+EXTRA_FIT_KEYWORDS = ("row_count_hints", "column_count_hints", "progress")
 
 
 def fit_keywords():
-    """(name, default) of every fit option, in table order."""
-    return [(name, None) for name in FIT_KEYWORDS]
+    """(name, default) of every fit option, in the order of the library's option table
+    (sfit.fit_options(), group "fit"), then the extra keywords (default None)."""
+    from . import _sfit
+
+    table = [(o["name"], o["default"]) for o in _sfit.fit_options() if o["group"] == "fit"]
+    return table + [(name, None) for name in EXTRA_FIT_KEYWORDS]
 
 
 _P = inspect.Parameter
@@ -82,7 +75,7 @@ def native_doc(native):
 def make_function(native, name, qualname, signature, doc):
     """A Python function `name` with `signature` that passes its arguments to `native`."""
     namespace = {"_native": native}
-    parts, call = [], []
+    parts, call, optional = [], [], []
     star = False
     for k, p in enumerate(signature.parameters.values()):
         text = p.name
@@ -99,7 +92,10 @@ def make_function(native, name, qualname, signature, doc):
             if not star:
                 parts.append("*")
                 star = True
-            call.append(f"{p.name}={p.name}")
+            if p.default is _P.empty:
+                call.append(f"{p.name}={p.name}")
+            else:  # left at its default (this very object): not passed, the native's rules apply
+                optional.append((p.name, f"_d{k}"))
         else:
             call.append(p.name)
         parts.append(text)
@@ -107,7 +103,10 @@ def make_function(native, name, qualname, signature, doc):
                 k + 1 == len(signature.parameters)
                 or list(signature.parameters.values())[k + 1].kind is not _P.POSITIONAL_ONLY):
             parts.append("/")
-    source = f"def {name}({', '.join(parts)}):\n    return _native({', '.join(call)})\n"
+    body = "    _kw = {}\n" + "".join(
+        f"    if {n} is not {d}:\n        _kw[{n!r}] = {n}\n" for n, d in optional)
+    call.append("**_kw")
+    source = f"def {name}({', '.join(parts)}):\n{body}    return _native({', '.join(call)})\n"
     exec(compile(source, f"<sfit signature of {qualname}>", "exec"), namespace)
     f = namespace[name]
     f.__qualname__ = qualname

@@ -122,11 +122,15 @@ void bind_fit(py::module_& m) {
       .def(
           "save",
           [](const PyFit& f, const std::string& path, bool mesh, int mesh_density, bool fields,
-             const std::string& units) {
-            save_output(path, f.result.surface, &f, mesh, mesh_density, fields, units);
+             const std::string& units, bool obj_freeform, const std::string& normals) {
+            save_output(path, f.result.surface, &f,
+                        output_settings(mesh, mesh_density, fields, units, obj_freeform, normals));
           },
-          py::arg("path"), py::arg("mesh") = false, py::arg("mesh_density") = 0,
-          py::arg("fields") = false, py::arg("units") = "mm",
+          py::arg("path"), py::arg("mesh") = output_default("mesh"),
+          py::arg("mesh_density") = output_default("mesh_density"),
+          py::arg("fields") = output_default("fields"), py::arg("units") = output_default("units"),
+          py::arg("obj_freeform") = output_default("obj_freeform"),
+          py::arg("normals") = output_default("normals"),
           "Writes the surface as `sfit fit -o path` does (a .json with the report; .vtk "
           "fields with the deviations), atomically.")
       .def("__repr__", [](const PyFit& f) {

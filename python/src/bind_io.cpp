@@ -1,7 +1,8 @@
-// sfit.load_rows(): every input format of `sfit fit`, through the CLI's reader registry.
+// sfit.load_rows(): every input format of `sfit fit`, through the library's readers
+// (sfit/files.h): no CLI code, nothing printed.
 #include "bindings.h"
-#include "cli_common.h"
 #include "convert.h"
+#include "sfit/files.h"
 
 namespace sfit::python {
 
@@ -10,10 +11,10 @@ void bind_io(py::module_& m) {
       "load_rows",
       [](const std::string& path) {
         check_path(path, "path");
-        cli::Input in;
+        files::Input in;
         {
           py::gil_scoped_release nogil;
-          in = cli::read_input(path);
+          in = files::read_input(path);
         }
         return rows_to_list_weighted(in.rows);
       },

@@ -12,28 +12,31 @@
 #include "convert.h"
 #include "errors.h"
 #include "eval.h"
-#include "outputs.h"
+#include "options.h"
+#include "sfit/files.h"
 #include "sfit/io/formats.h"
 #include "sfit/io/surface_json.h"
 #include "surface_json_value.h"
 
 namespace sfit::python {
 
-void save_output(const std::string& path, const Surface& surface, const PyFit* fit, bool mesh,
-                 int mesh_density, bool fields, const std::string& units) {
+void save_output(const std::string& path, const Surface& surface, const PyFit* fit,
+                 const OutputSettings& out) {
   check_path(path, "path");
-  cli::check_output_extension(path);
-  cli::check_output_options(units, mesh_density);
-  const cli::OutputContext context{surface,
-                                   fit ? &fit->result : nullptr,
-                                   fit ? fit->rows.get() : nullptr,
-                                   "python",
-                                   mesh,
-                                   mesh_density,
-                                   fields,
-                                   units};
+  files::check_output_extension(path);
+  files::check_output_options(out.units, out.mesh_density, out.normals);
+  files::OutputContext context{surface,
+                               fit ? &fit->result : nullptr,
+                               fit ? fit->rows.get() : nullptr,
+                               "python",
+                               out.mesh,
+                               out.mesh_density,
+                               out.fields,
+                               out.units};
+  context.obj_freeform = out.obj_freeform;
+  context.normals = out.normals;
   py::gil_scoped_release nogil;
-  cli::write_output(path, context);
+  files::write_output(path, context);
 }
 
 void bind_surface(py::module_& m) {
@@ -77,14 +80,19 @@ points (nu + degree_u wrap copies in a periodic direction) as an (nu_full, nv_fu
       .def(
           "save",
           [](const Surface& s, const std::string& path, bool mesh, int mesh_density, bool fields,
-             const std::string& units) {
-            save_output(path, s, nullptr, mesh, mesh_density, fields, units);
+             const std::string& units, bool obj_freeform, const std::string& normals) {
+            save_output(path, s, nullptr,
+                        output_settings(mesh, mesh_density, fields, units, obj_freeform, normals));
           },
-          py::arg("path"), py::arg("mesh") = false, py::arg("mesh_density") = 0,
-          py::arg("fields") = false, py::arg("units") = "mm",
+          py::arg("path"), py::arg("mesh") = output_default("mesh"),
+          py::arg("mesh_density") = output_default("mesh_density"),
+          py::arg("fields") = output_default("fields"), py::arg("units") = output_default("units"),
+          py::arg("obj_freeform") = output_default("obj_freeform"),
+          py::arg("normals") = output_default("normals"),
           R"(Writes the surface to `path` in the format of its extension, as `sfit convert -o`
-(sfit.output_formats() lists them), atomically. mesh, mesh_density, fields, units: as the
-CLI's --mesh, --mesh-density, --fields, --units.)")
+(sfit.output_formats() lists them), atomically. mesh, mesh_density, fields, units,
+obj_freeform, normals: as the CLI's --mesh, --mesh-density, --fields, --units, --obj-freeform,
+--normals (sfit.fit_options() group "output").)")
       .def(
           "to_json", [](const Surface& s) { return json_to_python(io::surface_to_json(s)); },
           "The surface as the dict of docs/surface-json.md.")

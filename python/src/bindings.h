@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "sfit/options.h"
 #include "sfit/rows.h"
 #include "sfit/surface_fit.h"
 
@@ -24,14 +25,16 @@ struct PyFit {
 /// the CLI exits 7 then; the error's `fit` attribute holds the fit.
 void check_within_tolerance(const PyFit& fit);
 
-/// Writes `path` through the CLI's output registry (apps/sfit/outputs.h), as `sfit fit -o`.
-void save_output(const std::string& path, const Surface& surface, const PyFit* fit, bool mesh,
-                 int mesh_density, bool fields, const std::string& units);
+/// Writes `path` through the library's writers (sfit/files.h), as `sfit fit -o`.
+/// `output`: save()'s keywords, checked by the library's option table (options.h).
+void save_output(const std::string& path, const Surface& surface, const PyFit* fit,
+                 const OutputSettings& output);
 
 void bind_errors(py::module_& m);
 void bind_surface(py::module_& m);
 void bind_fit(py::module_& m);
 void bind_curve(py::module_& m);
 void bind_io(py::module_& m);
+void bind_options(py::module_& m);  // sfit.fit_options() (options.cpp)
 
 }  // namespace sfit::python

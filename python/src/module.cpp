@@ -16,4 +16,5 @@ PYBIND11_MODULE(_sfit, m) {
   sfit::python::bind_fit(m);
   sfit::python::bind_io(m);
   sfit::python::bind_eval_module(m);
+  sfit::python::bind_options(m);
 }

@@ -1,14 +1,12 @@
 #include "options.h"
 
 #include <memory>
-#include <sstream>
 #include <vector>
 
 #include "convert.h"
 #include "errors.h"
-#include "basis.h"
-#include "sfit/option_names.h"
-#include "sfit/parametrization.h"
+#include "sfit/error.h"
+#include "sfit/options.h"
 
 namespace sfit::python {
 namespace {
@@ -51,68 +49,51 @@ std::vector<int> integers(py::handle v, const char* name) {
   return out;
 }
 
-// A named value parsed by the library's own parser (bool parse(std::string_view, T&)).
-template <class T>
-void named(T& out, py::handle v, const char* name, bool (*parse)(std::string_view, T&),
-           const char* known) {
-  const std::string s = text(v, name);
-  if (!parse(s, out)) usage_error(name, "'" + s + "' is not one of " + known);
+// The library's value of a Python object for an option of the table's `type`.
+OptionValue value_of(const OptionSpec& spec, py::handle v, const char* name) {
+  switch (spec.type) {
+    case OptionType::kInteger:
+      return static_cast<long long>(integer(v, name));
+    case OptionType::kNumber:
+      return number(v, name);
+    case OptionType::kTolerance:
+      return per_axis_from(v, name);
+    case OptionType::kChoice:
+      return text(v, name);
+    case OptionType::kFlag:
+      if (!py::isinstance<py::bool_>(v))
+        usage_error(name, "expected True or False, got " + std::string(py::str(py::repr(v))));
+      return v.cast<bool>();
+  }
+  return false;
 }
 
-std::string g(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
+// The Python value of a table default (None where it depends on the data).
+py::object default_of(const OptionSpec& s) {
+  const std::string d(s.default_value);
+  if (d.empty()) return py::none();
+  switch (s.type) {
+    case OptionType::kInteger:
+      return py::int_(std::stoll(d));
+    case OptionType::kNumber:
+      return py::float_(std::stod(d));
+    case OptionType::kFlag:
+      return py::bool_(d == "true");
+    default:
+      return py::str(d);
+  }
 }
 
-struct Field {
+struct Extra {
   const char* name;
-  std::string doc;
+  const char* doc;
   void (*set)(Settings&, py::handle, const char*);
 };
 
-// The table. Order matters only where one option refines another: `degree` sets both
-// directions, `degree_u` / `degree_v` then override one.
-const std::vector<Field>& fields() {
-  static const std::vector<Field> table = {
-      {"tol", "tolerance T: one number or three (Tx, Ty, Tz), absolute, >= 0 (0 interpolates)",
-       [](Settings& s, py::handle v, const char* n) { s.tol = per_axis_from(v, n); }},
-      {"tol_rel",
-       "tolerance as a fraction 0 ... 1 of the bounding-box diagonal (default " +
-           g(kDefaultToleranceFraction) + ")",
-       [](Settings& s, py::handle v, const char* n) {
-         s.tol_rel = number(v, n);
-         check_tolerance_fraction(*s.tol_rel, n);
-       }},
-      {"degree", "degree in both directions, 1 ... " + std::to_string(kMaxDegree),
-       [](Settings& s, py::handle v, const char* n) {
-         s.options.degree_u = s.options.degree_v = integer(v, n);
-       }},
-      {"degree_u", "degree along the rows (overrides degree)",
-       [](Settings& s, py::handle v, const char* n) { s.options.degree_u = integer(v, n); }},
-      {"degree_v", "degree across the rows (overrides degree)",
-       [](Settings& s, py::handle v, const char* n) { s.options.degree_v = integer(v, n); }},
-      {"closed",
-       "closed directions: '' or 'none', 'u' (rows are closed contours), 'v' (the rows "
-       "form a closed sequence), 'uv'",
-       [](Settings& s, py::handle v, const char* n) {
-         const std::string c = text(v, n);
-         if (!parse_closed(c, s.options.closed_u, s.options.closed_v))
-           usage_error(n, "'" + c + "' is not one of u, v, uv, none");
-       }},
-      {"search", "count search: 'fast', 'linear' (the paper's), 'known' (take the count hints)",
-       [](Settings& s, py::handle v, const char* n) {
-         named(s.options.search, v, n, parse_count_search, "fast, linear, known");
-       }},
-      {"parameters",
-       "how points get parameters: 'paper', 'uniform', 'chord', 'centripetal', "
-       "'fewest' (tries the four, keeps the fewest control points)",
-       [](Settings& s, py::handle v, const char* n) {
-         named(s.options.parametrization, v, n, parse_parametrization,
-               "paper, uniform, chord, centripetal, fewest");
-       }},
-      {"threads", "threads, 0: all cores (results do not depend on it)",
-       [](Settings& s, py::handle v, const char* n) { s.options.threads = integer(v, n); }},
+// The keywords of the Python module only (not options of `sfit fit`): count hints from an
+// earlier report, and a progress callback.
+const std::vector<Extra>& extras() {
+  static const std::vector<Extra> table = {
       {"row_count_hints", "counts to start each row's search from (a report's row_counts)",
        [](Settings& s, py::handle v, const char* n) {
          s.options.row_count_hints = integers(v, n);
@@ -141,25 +122,42 @@ const std::vector<Field>& fields() {
   return table;
 }
 
+std::string known_keywords() {
+  std::string names;
+  for (const OptionSpec& s : option_table())
+    if (s.group == OptionGroup::kFit) names += (names.empty() ? "" : ", ") + std::string(s.name);
+  for (const Extra& e : extras()) names += ", " + std::string(e.name);
+  return names;
+}
+
 }  // namespace
 
 Settings settings_from(const py::kwargs& kwargs) {
   Settings s;
-  for (const Field& f : fields())
-    if (kwargs.contains(f.name)) {
-      py::object v = kwargs[f.name];
-      if (!v.is_none()) f.set(s, v, f.name);
+  // The table's order: `degree` sets both directions, `degree_u` / `degree_v` then override.
+  for (const OptionSpec& spec : option_table()) {
+    if (spec.group != OptionGroup::kFit) continue;
+    const std::string name(spec.name);
+    if (!kwargs.contains(name.c_str())) continue;
+    py::object v = kwargs[name.c_str()];
+    if (v.is_none()) continue;
+    set_fit_option(s, name, value_of(spec, v, name.c_str()), name);
+  }
+  for (const Extra& e : extras())
+    if (kwargs.contains(e.name)) {
+      py::object v = kwargs[e.name];
+      if (!v.is_none()) e.set(s, v, e.name);
     }
   for (const auto& [key, value] : kwargs) {
     (void)value;
     const std::string k = py::cast<std::string>(key);
-    bool known = false;
-    std::string names;
-    for (const Field& f : fields()) {
-      known = known || k == f.name;
-      names += (names.empty() ? "" : ", ") + std::string(f.name);
-    }
-    if (!known) usage_error(k, "unknown option (known: " + names + ")");
+    const OptionSpec* spec = find_option(k);
+    bool known = spec && spec->group == OptionGroup::kFit;
+    for (const Extra& e : extras()) known = known || k == e.name;
+    if (!known)
+      usage_error(
+          k, spec ? "an option of save(), not of the fit (fit options: " + known_keywords() + ")"
+                  : "unknown option (known: " + known_keywords() + ")");
   }
   if (s.tol && s.tol_rel) usage_error("tol_rel", "give tol or tol_rel, not both");
   return s;
@@ -167,15 +165,71 @@ Settings settings_from(const py::kwargs& kwargs) {
 
 FitOptions resolve(const Rows& rows, const Settings& s) {
   FitOptions o = s.options;
-  o.tolerance =
-      s.tol ? *s.tol : relative_tolerance(rows, s.tol_rel.value_or(kDefaultToleranceFraction));
+  o.tolerance = s.tolerance(rows);
   return o;
 }
 
 std::string options_doc() {
   std::string out;
-  for (const Field& f : fields()) out += "    " + std::string(f.name) + ": " + f.doc + "\n";
+  for (const OptionSpec& s : option_table())
+    if (s.group == OptionGroup::kFit) {
+      std::string h = full_help(s);
+      if (s.type == OptionType::kChoice) h += "; one of " + choice_list(s);
+      out += "    " + std::string(s.name) + ": " + h + "\n";
+    }
+  for (const Extra& e : extras()) out += "    " + std::string(e.name) + ": " + e.doc + "\n";
   return out;
+}
+
+py::list fit_options() {
+  py::list out;
+  for (const OptionSpec& s : option_table()) {
+    py::dict d;
+    d["name"] = std::string(s.name);
+    d["flag"] = std::string(s.flag);
+    d["group"] = std::string(to_string(s.group));
+    d["type"] = std::string(to_string(s.type));
+    d["default"] = default_of(s);
+    if (s.type == OptionType::kInteger) {
+      d["min"] = static_cast<long long>(s.min);
+      d["max"] = static_cast<long long>(s.max);
+    } else if (s.type == OptionType::kNumber) {
+      d["min"] = s.min;
+      d["max"] = s.max;
+    }
+    if (s.type == OptionType::kChoice) {
+      py::list c;
+      for (std::string_view v : s.choices) c.append(std::string(v));
+      d["choices"] = c;
+    }
+    d["help"] = s.help;
+    out.append(d);
+  }
+  return out;
+}
+
+OutputSettings output_settings(bool mesh, int mesh_density, bool fields, const std::string& units,
+                               bool obj_freeform, const std::string& normals) {
+  OutputSettings o;
+  set_output_option(o, "mesh", mesh, "mesh");
+  set_output_option(o, "mesh_density", static_cast<long long>(mesh_density), "mesh_density");
+  set_output_option(o, "fields", fields, "fields");
+  set_output_option(o, "units", units, "units");
+  set_output_option(o, "obj_freeform", obj_freeform, "obj_freeform");
+  set_output_option(o, "normals", normals, "normals");
+  return o;
+}
+
+py::object output_default(const char* name) {
+  return default_of(*find_option(name));
+}
+
+void bind_options(py::module_& m) {
+  m.def("fit_options", &fit_options,
+        R"(The library's option table, one dict per option of `sfit fit`: name (the keyword of
+fit() for group "fit", of save() for group "output"), flag (the CLI's), group, type ("integer",
+"number", "tolerance", "choice", "flag"), default (None where it depends on the data), min and
+max (integer, number), choices (choice), help. docs/options.md is made from the same table.)");
 }
 
 }  // namespace sfit::python

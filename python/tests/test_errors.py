@@ -34,9 +34,9 @@ EXIT = {"usage": 2, "input-unreadable": 3, "input-syntax": 4, "input-data": 5, "
         ({"tol_rel": 2.0}, "tol_rel"),
         ({"tol": (1, 2)}, "tol"),
         ({"tol": "0.1"}, "tol"),
-        ({"tol": -1}, "tolerance"),
-        ({"tol": float("nan")}, "tolerance"),
-        ({"degree": 0}, "degree_u"),
+        ({"tol": -1}, "tol"),  # the keyword given, checked by the option table
+        ({"tol": float("nan")}, "tol"),
+        ({"degree": 0}, "degree"),
         ({"degree_v": 21}, "degree_v"),
         ({"degree": 2.5}, "degree"),
         ({"threads": -1}, "threads"),

@@ -58,3 +58,18 @@ def test_step_sections_when_the_build_has_them(cli, tmp_path):
         assert code == 5 and err.strip() == f"sfit: error: {e}"
     else:
         raise AssertionError("a STEP face without section curves was read as rows")
+
+
+def test_load_rows_prints_nothing_and_links_no_cli_code(capfd):
+    """The readers are the library's (sfit/files.h): reading STEP/IGES sections prints none of
+    the CLI's "sfit: ..." lines (the CLI says the file's length unit itself)."""
+    import pathlib
+
+    rows = sfit.load_rows(str(pathlib.Path(example("d150_wing")).parents[1] / "tests" /
+                              "bad_input" / "closed_sections.igs"))
+    assert len(rows) >= 2
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""
+    so = pathlib.Path(sfit._sfit.__file__).read_bytes()
+    for cli_symbol in (b"harden_options", b"add_fit_option_flags", b"units_of_outputs"):
+        assert cli_symbol not in so

@@ -5,6 +5,8 @@
 
 #include "sfit/error.h"
 #include "sfit/io/surface_json.h"
+#include "sfit/options.h"
+#include "sfit/seam_alignment.h"
 #include "surface_json_value.h"
 
 namespace sfit::server {
@@ -122,47 +124,73 @@ json options_json(const FitOptions& o) {
               {"degree", {o.degree_u, o.degree_v}},
               {"closed", {o.closed_u, o.closed_v}},
               {"search", search_name(o.search)},
-              {"parameters", std::string(to_string(o.parametrization))}};
+              {"parameters", std::string(to_string(o.parametrization))},
+              {"method", std::string(to_string(o.method))},
+              {"norm", std::string(to_string(o.norm))},
+              {"seam", std::string(to_string(o.seam))},
+              {"orient", std::string(to_string(o.orient))},
+              {"rerepresent", std::string(to_string(o.rerepresentation))},
+              {"fold_guard", o.fold_guard}};
 }
 
+namespace {
+// The value of `v` for an option of the table, by the table's type.
+OptionValue value_of(const OptionSpec& s, const json& v, const std::string& name) {
+  switch (s.type) {
+    case OptionType::kInteger:
+      if (!v.is_number_integer()) bad(name, "must be a whole number, got " + v.dump());
+      return v.get<long long>();
+    case OptionType::kNumber:
+      return finite(v, name);
+    case OptionType::kTolerance:
+      return v.is_array() ? point_of(v, name) : Point::Constant(finite(v, name));
+    case OptionType::kChoice:
+      if (!v.is_string()) bad(name, "must be one of " + choice_list(s) + ", got " + v.dump());
+      return v.get<std::string>();
+    case OptionType::kFlag:
+      if (!v.is_boolean()) bad(name, "must be true or false, got " + v.dump());
+      return v.get<bool>();
+  }
+  bad(name, "unknown field");
+}
+}  // namespace
+
 FitOptions options_from_json(const json& r, const FitOptions& current) {
-  check_keys(r, {"tolerance", "degree", "closed", "search", "parameters", "phase"});
-  FitOptions o = current;
+  // The keys: the option table's fit options (sfit/options.h, GET /api/options-table) that an
+  // edit session can change, with tolerance as [Tx, Ty, Tz] or T, degree as [p, q] and closed
+  // as [u, v]; every check is the table's (set_fit_option).
+  check_keys(r, {"tolerance", "degree", "closed", "search", "parameters", "method", "norm", "seam",
+                 "orient", "rerepresent", "fold_guard", "phase"});
+  FitSettings st;
+  st.options = current;
   if (r.contains("tolerance")) {
-    const json& t = r["tolerance"];
-    o.tolerance = t.is_array() ? point_of(t, "tolerance") : Point::Constant(finite(t, "tolerance"));
+    set_fit_option(st, "tol", value_of(*find_option("tol"), r["tolerance"], "tolerance"),
+                   "tolerance");
+    st.options.tolerance = *st.tol;
   }
   if (r.contains("degree")) {
     const json& d = r["degree"];
     if (!d.is_array() || d.size() != 2 || !d[0].is_number_integer() || !d[1].is_number_integer())
       bad("degree", "must be [p, q], two whole numbers");
-    o.degree_u = static_cast<int>(std::clamp<long long>(d[0].get<long long>(), -1, 1000));
-    o.degree_v = static_cast<int>(std::clamp<long long>(d[1].get<long long>(), -1, 1000));
+    set_fit_option(st, "degree_u", d[0].get<long long>(), "degree");
+    set_fit_option(st, "degree_v", d[1].get<long long>(), "degree");
   }
   if (r.contains("closed")) {
     const json& c = r["closed"];
     if (!c.is_array() || c.size() != 2 || !c[0].is_boolean() || !c[1].is_boolean())
       bad("closed", "must be [u, v], two booleans");
-    o.closed_u = c[0].get<bool>();
-    o.closed_v = c[1].get<bool>();
+    st.options.closed_u = c[0].get<bool>();
+    st.options.closed_v = c[1].get<bool>();
   }
-  if (r.contains("search")) {
-    const json& s = r["search"];
-    if (s == "fast")
-      o.search = CountSearch::kFast;
-    else if (s == "linear")
-      o.search = CountSearch::kLinear;
-    else
-      bad("search", "must be \"fast\" or \"linear\", got " + s.dump());
-  }
-  if (r.contains("parameters")) {
-    const json& p = r["parameters"];
-    if (!p.is_string() || !parse_parametrization(p.get<std::string>(), o.parametrization))
-      bad("parameters", "unknown rule " + p.dump());
-  }
-  o.row_count_hints.clear();
-  o.column_count_hints.clear();
-  return o;
+  for (const char* name :
+       {"search", "parameters", "method", "norm", "seam", "orient", "rerepresent", "fold_guard"})
+    if (r.contains(name))
+      set_fit_option(st, name, value_of(*find_option(name), r[name], name), name);
+  if (st.options.search == CountSearch::kKnown)
+    bad("search", "\"known\" needs count hints, which the editor does not give");
+  st.options.row_count_hints.clear();
+  st.options.column_count_hints.clear();
+  return st.options;
 }
 
 MovePhase phase_of(const json& r) {

@@ -9,6 +9,7 @@
 #include "session.h"
 #include "sfit/error.h"
 #include "sfit/io/file_names.h"
+#include "sfit/io/options_json.h"
 #include "sfit/io/surface_json.h"
 #include "sfit/server/editor.h"
 // clang-format off
@@ -308,6 +309,10 @@ struct EditorServer::Impl {
     };
     http.Post("/api/undo", history(true));
     http.Post("/api/redo", history(false));
+    // The library's option table (sfit/options.h): names, types, defaults, limits, choices.
+    http.Get("/api/options-table", [this](const httplib::Request&, httplib::Response& res) {
+      guarded(res, [&] { reply(res, 200, io::option_table_json()); });
+    });
     http.Post("/api/options", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const json body = body_of(req);

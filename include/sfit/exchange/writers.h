@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "sfit/exchange/tessellate.h"
+#include "sfit/options.h"
 #include "sfit/rows.h"
 #include "sfit/surface.h"
 #include "sfit/surface_fit.h"
@@ -31,9 +32,9 @@ std::vector<std::string> writer_extensions();
 
 /// The densities --mesh-density accepts whatever the surface: 0 (automatic) or
 /// kMinMeshDensity ... kMaxMeshDensity samples per direction (the mesh stays below 5e7
-/// vertices, and its time to seconds). Throws Error(kUsage, option "--mesh-density") otherwise, before any work.
-inline constexpr int kMinMeshDensity = 3;
-inline constexpr int kMaxMeshDensity = 4096;
+/// vertices, and its time to seconds). Throws Error(kUsage, option "--mesh-density") otherwise,
+/// before any work.
+// kMinMeshDensity, kMaxMeshDensity: the option table's (sfit/options.h).
 void check_mesh_density(int samples);
 
 /// Writes `surface` to `path` in the format of its extension, atomically, and returns what

@@ -1,4 +1,6 @@
-#include "outputs.h"
+// The writers of sfit/files.h: JSON always, the other surface formats of the registry that
+// this build has through the exchange part.
+#include "sfit/files.h"
 
 #include <algorithm>
 #include <map>
@@ -12,7 +14,7 @@
 #include "sfit/exchange/writers.h"
 #endif
 
-namespace sfit::cli {
+namespace sfit::files {
 namespace {
 
 using Writer = std::function<std::string(const std::string&, const OutputContext&)>;
@@ -59,7 +61,7 @@ std::vector<std::string> output_extensions() {
 
 void check_output_extension(const std::string& path, const std::string& option,
                             io::FormatKind kind) {
-  const std::string e = extension_of(path);
+  const std::string e = io::extension_of(path);
   const io::Format* f = io::find_format(e);
   if (f && f->kind == kind && f->writes && f->available &&
       (kind != io::FormatKind::kSurface || writers().count(e)))
@@ -87,23 +89,13 @@ void check_output_options(const std::string& units, int mesh_density, const std:
 #endif
 }
 
-std::string mesh_density_help() {
-#ifdef SFIT_HAVE_EXCHANGE
-  return "tessellation samples per direction, " + std::to_string(exchange::kMinMeshDensity) +
-         " ... " + std::to_string(exchange::kMaxMeshDensity) +
-         " (default 0: from the chordal error, within a triangle budget; see docs/meshes.md)";
-#else
-  return "tessellation samples per direction (this build has no mesh formats)";
-#endif
-}
-
 std::string write_output(const std::string& path, const OutputContext& context, std::string* text) {
   if (text) {
     *text = io::surface_json_text(context.surface, context.fit ? &context.fit->report : nullptr);
     return {};
   }
   check_output_extension(path);
-  return writers().at(extension_of(path))(path, context);
+  return writers().at(io::extension_of(path))(path, context);
 }
 
-}  // namespace sfit::cli
+}  // namespace sfit::files
