@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -158,6 +159,37 @@ TEST(StandardOutput, AFullDeviceIsNotSuccess) {
     EXPECT_EQ(read_file(dir + "/err"),
               "sfit: error: standard output: cannot write output: No space left on device\n");
   }
+}
+
+// Out of memory (std::bad_alloc) is exit 9 with the command and input named, never exit 8:
+// the address space limited (ulimit -v) from where the program barely loads upwards, on two
+// rows of 30000 points whose fit needs some 100 MB.
+TEST(OutOfMemory, IsExitNineWithItsPlace) {
+  const std::string dir = temp_dir();
+  std::string rows;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 30000; ++i)
+      rows += std::to_string(i * 1e-3) + " " + std::to_string(j) + " " +
+              std::to_string(std::sin(i * 1e-4) + (i == 15000 ? 5.0 : 0.0)) + "\n";
+    rows += "\n";
+  }
+  write_file(dir + "/long.rows", rows);
+  int nines = 0;
+  for (int mb = 60; mb <= 180; mb += 30) {
+    SCOPED_TRACE(std::to_string(mb) + " MB");
+    const int code = shell("cd " + q(dir) + " && ulimit -v " + std::to_string(mb * 1024) + " && " +
+                           q(SFIT_CLI) + " fit long.rows -o out.json -q 2>err");
+    const std::string err = read_file(dir + "/err");
+    if (code == 127) continue;  // the loader could not map the libraries: sfit never ran
+    EXPECT_TRUE(code == 0 || code == 9) << code << ": " << err;
+    if (code != 9) continue;
+    ++nines;
+    EXPECT_EQ(err,
+              "sfit: error: fit long.rows: out of memory: the input or the options need more "
+              "memory than this process can have\n");
+    EXPECT_FALSE(fs::exists(dir + "/out.json"));
+  }
+  EXPECT_GT(nines, 0) << "no limit made the fit run out of memory";
 }
 
 }  // namespace
