@@ -111,7 +111,9 @@ TEST(FinalCheck, NoRoundoffAllowanceAboveZeroTolerance) {
   o.tolerance = Point::Constant(1e-12);
   try {
     const FitResult f = fit_surface(rows, o);
-    if (f.report.within_tolerance) EXPECT_LE(worst_ratio_as_written(f, rows, o.tolerance), 1.0);
+    if (f.report.within_tolerance) {
+      EXPECT_LE(worst_ratio_as_written(f, rows, o.tolerance), 1.0);
+    }
   } catch (const Error& e) {
     EXPECT_TRUE(e.code() == ErrorCode::kToleranceNotMet || e.code() == ErrorCode::kInputData)
         << e.what();
@@ -145,8 +147,9 @@ TEST(Weights, OutOfTheirRangeAreInputFaults) {
     }
   }
   // The ends of the range fit (each weight alone, and both together).
-  for (const std::pair<double, double> w :
-       {std::pair{kMinWeight, 1.0}, {1.0, kMaxWeight}, {kMinWeight, kMaxWeight}}) {
+  const std::vector<std::pair<double, double>> ends = {
+      {kMinWeight, 1.0}, {1.0, kMaxWeight}, {kMinWeight, kMaxWeight}};
+  for (const auto& w : ends) {
     Rows rows = grid(0);
     std::vector<double> weights(rows.total_points(), w.first);
     for (std::size_t i = 0; i < weights.size(); i += 2) weights[i] = w.second;
