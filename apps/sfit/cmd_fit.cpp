@@ -142,6 +142,9 @@ int run_fit(const FitArgs& a) {
                   vec(r.worst_deviation)));
   say(fmt::format("every point within tolerance: {}; {:.3f} s", r.within_tolerance ? "yes" : "NO",
                   r.seconds));
+  if ((r.tolerance.array() == 0).any())  // the allowance applies at T = 0 only (docs/errors.md)
+    say(fmt::format("T = 0 allows round-off: deviations up to {} ({} of the diagonal)",
+                    g(r.roundoff), g(kRoundoffRelative)));
   {  // Seams and shape measures (docs/seams.md).
     int moved = 0, reversed = 0;
     for (const RowSeam& s : r.seams) {

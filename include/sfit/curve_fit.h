@@ -69,6 +69,10 @@ struct CurveFitOptions {
   /// Weights of the points (docs/seams.md): weighted least squares; empty: all 1, and the
   /// shared factorisations are used. The bound stays a hard bound for every point.
   std::span<const double> weights;
+  /// CountSearch::kLinear only: try at most this many counts (0: no limit). Where none of
+  /// them holds the fit comes back without control points: every count below
+  /// degree + 1 + linear_limit fails, a lower bound on the smallest one that holds.
+  int linear_limit = 0;
 };
 
 /// The curve with the smallest count in [degree+1, N] whose fit keeps every point within

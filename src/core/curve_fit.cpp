@@ -242,8 +242,13 @@ CurveFit fit_curve(std::span<const Point> points, const CurveFitOptions& o) {
     return std::move(best);
   };
   if (o.search == CountSearch::kLinear) {
-    for (int c = lo;; ++c)
+    for (int c = lo;; ++c) {
+      if (o.linear_limit > 0 && c - lo >= o.linear_limit && c < n) {
+        best = CurveFit{};  // no count up to here holds: no curve
+        return finish();
+      }
       if (holds(c)) return finish();
+    }
   }
   const int start = o.hint > 0 ? std::clamp(o.hint, lo, n) : lo;
   bool start_holds;

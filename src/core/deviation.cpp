@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "parallel.h"
 #include "basis.h"
+#include "parallel.h"
 
 namespace sfit {
 
@@ -45,7 +45,7 @@ DeviationCheck check_rows(const Surface& s, const Rows& rows, std::span<const do
       out.max_deviation = out.max_deviation.cwiseMax(ad);
       double ratio = 0;
       for (int a = 0; a < 3; ++a) {
-        if (ad[a] > tol[a] + roundoff) out.within = false;
+        if (ad[a] > tol[a] + (tol[a] == 0 ? roundoff : 0.0)) out.within = false;
         const double r = tol[a] > 0 ? ad[a] / tol[a] : (ad[a] > roundoff ? ad[a] / roundoff : 0);
         ratio = std::max(ratio, r);
       }

@@ -15,12 +15,13 @@ struct DeviationCheck {
   long worst_index = -1;
   Point worst_deviation = Point::Zero();  ///< S(u,v) - D there, signed (its direction)
   double worst_ratio = 0;                 ///< max over points and axes of |S - D| / T
-  bool within = true;                     ///< every point within tolerance + roundoff per axis
+  bool within = true;  ///< every point within tolerance per axis (round-off at T = 0)
 };
 
 /// Evaluates the surface at every data point's assigned parameters (u per point, in the
 /// order of rows.points(); v per row) and measures the per-axis deviation.
-/// A point is within if |S - D|_a <= tolerance_a + roundoff on every axis a.
+/// A point is within if |S - D|_a <= tolerance_a on every axis a, where a tolerance of 0 allows
+/// `roundoff` (the round-off allowance applies at T = 0 only).
 /// `threads` (0: all cores) splits the rows into fixed blocks; the result is the same for any
 /// thread count.
 DeviationCheck check_deviation(const Surface& surface, const Rows& rows, std::span<const double> u,

@@ -10,9 +10,11 @@
 #include <string>
 
 #include "basis.h"
+#include "final_check.h"
 #include "parallel.h"
 #include "sfit/error.h"
 #include "sfit/fit_limits.h"
+#include "sfit/weights.h"
 
 namespace sfit {
 namespace {
@@ -115,7 +117,7 @@ void validate(const Rows& rows, const FitOptions& o) {
                     Place{.row = jl, .point = static_cast<long>(k)},
                     {row[k].x(), row[k].y(), row[k].z()});
   }
-  // Weights (docs/seams.md): one finite weight > 0 per point, or none.
+  // Weights (docs/seams.md): one weight kMinWeight ... kMaxWeight per point, or none.
   if (rows.weighted()) {
     if (rows.weights().size() != rows.total_points())
       throw Error(ErrorCode::kInputData,
@@ -125,8 +127,8 @@ void validate(const Rows& rows, const FitOptions& o) {
     for (std::size_t j = 0; j < M; ++j) {
       const auto w = rows.row_weights(j);
       for (std::size_t k = 0; k < w.size(); ++k)
-        if (!(w[k] > 0) || !std::isfinite(w[k]))
-          throw Error(ErrorCode::kInputData, "weight must be a finite number > 0",
+        if (const std::string why = weight_error(w[k]); !why.empty())
+          throw Error(ErrorCode::kInputData, why,
                       Place{.row = static_cast<long>(j), .point = static_cast<long>(k)}, {w[k]});
     }
   }
@@ -181,6 +183,8 @@ void validate(const Rows& rows, const FitOptions& o) {
                   std::string("tolerance ") + "xyz"[a] + " must be a finite number >= 0",
                   Place{.option = "tolerance"}, {t});
   }
+  // The surface is written in the data's coordinates: their offset must leave digits for T.
+  detail::check_offset_digits(box, o.tolerance, kRoundoffRelative * size);
 }
 
 Point relative_tolerance(const Rows& rows, double fraction) {

@@ -1,6 +1,17 @@
 #include "sfit/rows.h"
+#include "sfit/weights.h"
+
+#include <cstdio>
 
 namespace sfit {
+
+std::string weight_error(double w) {
+  if (w >= kMinWeight && w <= kMaxWeight) return {};
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "weight must be a number %g ... %g, got %g", kMinWeight,
+                kMaxWeight, w);
+  return buf;
+}
 
 BoundingBox bounding_box(const Rows& rows) {
   BoundingBox b;

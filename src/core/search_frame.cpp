@@ -19,8 +19,8 @@ namespace sfit::detail {
 namespace {
 
 struct PointsVerdict {
-  bool within = true;  // every point within T + round-off per axis
-  bool near = true;    // every point within min T + round-off of its surface point
+  bool within = true;  // every point within T per axis (+ round-off at T = 0)
+  bool near = true;    // every point within min T (+ round-off at 0) of its surface point
   double ratio = 0;    // the worst |S - D|_a / T_a (a lower bound where the pass stopped)
 };
 
@@ -34,7 +34,7 @@ struct PointsVerdict {
 PointsVerdict check_points(const Surface& s, const Rows& rows, std::span<const double> u,
                            std::span<const double> v, const Point& tol, double roundoff,
                            double stop_ratio, int threads) {
-  const double limit = tol.minCoeff() + roundoff;
+  const double limit = tol.minCoeff() + (tol.minCoeff() == 0 ? roundoff : 0.0);
   const std::size_t M = rows.size(), per = 16, n_blocks = (M + per - 1) / per;
   std::vector<PointsVerdict> part(n_blocks);
   std::atomic<bool> stop{false};
@@ -63,7 +63,7 @@ PointsVerdict check_points(const Surface& s, const Rows& rows, std::span<const d
           return;
         }
         for (int a = 0; a < 3; ++a) {
-          if (ad[a] > tol[a] + roundoff) out.within = false;
+          if (ad[a] > tol[a] + (tol[a] == 0 ? roundoff : 0.0)) out.within = false;
           out.ratio = std::max(
               out.ratio, tol[a] > 0 ? ad[a] / tol[a] : (ad[a] > roundoff ? ad[a] / roundoff : 0));
         }

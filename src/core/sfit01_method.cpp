@@ -8,6 +8,7 @@
 
 #include "aligned_fit.h"
 #include "deviation.h"
+#include "final_check.h"
 #include "fit_frame.h"
 #include "sfit/error.h"
 #include "sfit/fold_check.h"
@@ -42,6 +43,12 @@ long size_of(const FitResult& f) {
 }  // namespace
 
 FitResult SurfaceFitter::fit(const Rows& rows) {
+  FitResult r = fit_centred(rows);
+  check_as_written(r, rows, o_);  // final_check.h: the surface as returned and written
+  return r;
+}
+
+FitResult SurfaceFitter::fit_centred(const Rows& rows) {
   // Seam alignment and orientation (seam_alignment.h, docs/seams.md), for every
   // method: the fit runs on the re-ordered rows; u, the worst point and the report refer to
   // the original points. update() refits in full after an aligned fit (valid_ cleared).
@@ -209,15 +216,21 @@ FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
 }
 
 FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>& changed) {
+  FitResult r = update_centred(rows, changed);
+  check_as_written(r, rows, o_);  // final_check.h (again after a fallback to fit(): the same)
+  return r;
+}
+
+FitResult SurfaceFitter::update_centred(const Rows& rows, const std::vector<std::size_t>& changed) {
   const double t0 = now();
   validate(rows, o_);
   const int threads = threads_for(rows, o_.threads);
   const BoundingBox box = box_of(rows, threads);
   if (!valid_ || rows.size() != centred_.size() || box.min != box_.min || box.max != box_.max ||
       rule_ != o_.parametrization)  // (never equal for kFewest: full refits)
-    return fit(rows);
+    return fit_centred(rows);
   // Rows that need re-ordering: a full fit (fit() aligns them).
-  if (!alignment_for(rows, o_).identity()) return fit(rows);
+  if (!alignment_for(rows, o_).identity()) return fit_centred(rows);
   // Same box, so the same centre, round-off allowance and budget: refresh the edited rows.
   std::vector<char> mark(rows.size(), 0);
   for (std::size_t j : changed) mark.at(j) = 1;
@@ -229,15 +242,16 @@ FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>
     at = fit_once(bound_, &mark);
   } catch (const Error& e) {
     if (e.code() != ErrorCode::kToleranceNotMet) throw;
-    return fit(rows);  // fit() would have met the same failure first: do exactly what it does
+    return fit_centred(
+        rows);  // fit() would have met the same failure first: do exactly what it does
   }
   const DeviationCheck check =
       check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_, threads_);
-  if (!check.within) return fit(rows);  // fit() would tighten: do exactly that
+  if (!check.within) return fit_centred(rows);  // fit() would tighten: do exactly that
   FitResult out = finish(at, 0, check, t0);
   if (rule_ != Parametrization::kPaper && failed_guard(out.surface, box_))
-    return fit(rows);  // fit() falls back to the paper's rule: do exactly that
-  if (o_.fold_guard && folds(out)) return fit(rows);  // fit() guards the fold
+    return fit_centred(rows);  // fit() falls back to the paper's rule: do exactly that
+  if (o_.fold_guard && folds(out)) return fit_centred(rows);  // fit() guards the fold
   valid_ = true;
   return out;
 }

@@ -45,6 +45,9 @@ class SurfaceFitter {
 
  private:
   struct Attempt;
+  // fit() and update() before the final check on the surface as written (final_check.h).
+  FitResult fit_centred(const Rows& rows);
+  FitResult update_centred(const Rows& rows, const std::vector<std::size_t>& changed);
   FitResult fit_given(const Rows& rows);  // fit() on rows as given (no seam alignment)
   FitResult fit_rule(const Rows& rows, Parametrization requested);
   FitResult fit_rule_unguarded(const Rows& rows, Parametrization requested);  // no fold guard

@@ -73,12 +73,19 @@ bool folds(const FitResult& f, const BoundingBox& box) {
 // A lower bound on the two-stage fit's nu x nv at the paper's rule: its nu is at least every
 // row's count, which is at least the smallest count holding that row within the curve
 // stage's budget (CountSearch::kLinear), and its nv at least degree_v + 1. From 8 rows.
+// Bounded: each row's scan tries at most kLowerBoundCounts counts (one O(points) solve each);
+// where none holds, the count after the last one tried is the row's bound (every count below
+// it failed). A row with one outlier needs thousands of counts: 2 rows of 30000 points took
+// minutes at one solve per count, a fraction of a second now. Rows whose counts stay below
+// degree + 1 + kLowerBoundCounts (every data set of the tests) get the same bound as before.
 long sfit01_lower_bound(const Rows& rows, const FitOptions& o) {
   const double roundoff = kRoundoffRelative * bounding_box(rows).diagonal();
   CurveFitOptions co;
   co.degree = o.degree_u;
   co.periodic = o.closed_u;
   co.search = CountSearch::kLinear;
+  constexpr int kLowerBoundCounts = 256;
+  co.linear_limit = kLowerBoundCounts;
   for (int a = 0; a < 3; ++a)
     co.bound[a] = o.tolerance[a] > 0 ? std::max(0.5 * o.tolerance[a] * (1 - 1e-9), 0.5 * roundoff)
                                      : 0.5 * roundoff;
@@ -86,8 +93,10 @@ long sfit01_lower_bound(const Rows& rows, const FitOptions& o) {
   std::vector<int> counts(picks, 0);
   parallel_for(picks, threads_for(rows, o.threads), [&](std::size_t p) {
     const auto row = rows[p * (M - 1) / std::max<std::size_t>(1, picks - 1)];
-    if (row.size() >= static_cast<std::size_t>(o.degree_u + 1))
-      counts[p] = fit_curve(row, co).curve.count();
+    if (row.size() >= static_cast<std::size_t>(o.degree_u + 1)) {
+      const CurveFit f = fit_curve(row, co);
+      counts[p] = f.curve.control.empty() ? o.degree_u + 1 + kLowerBoundCounts : f.curve.count();
+    }
   });
   const int nu = std::max(o.degree_u + 1, *std::max_element(counts.begin(), counts.end()));
   return static_cast<long>(nu) * (o.degree_v + 1);

@@ -12,10 +12,14 @@
 #include <Precision.hxx>
 #include <STEPControl_Controller.hxx>
 #include <STEPControl_Writer.hxx>
+#include <StepData_Protocol.hxx>
+#include <StepData_StepModel.hxx>
+#include <StepData_StepWriter.hxx>
 #include <TCollection_HAsciiString.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 #include <UnitsMethods.hxx>
+#include <XSControl_WorkSession.hxx>
 #include <algorithm>
 #include <array>
 #include <filesystem>
@@ -90,12 +94,21 @@ void write_step(const std::string& path, const Surface& s, const CadOptions& o) 
     header.SetName(new TCollection_HAsciiString(product_name(path, o).c_str()));
     header.SetAuthorValue(1, new TCollection_HAsciiString("sfit"));
     header.SetOrganizationValue(1, new TCollection_HAsciiString(""));
-    header.SetOriginatingSystem(new TCollection_HAsciiString("sfit " SFIT_VERSION_STRING " (OpenCASCADE 7.6)"));
+    header.SetOriginatingSystem(
+        new TCollection_HAsciiString("sfit " SFIT_VERSION_STRING " (OpenCASCADE 7.6)"));
     header.SetDescriptionValue(
         1, new TCollection_HAsciiString("B-spline surface fitted by sfit (Vergeest 1989, SFIT01)"));
-    io::write_via_temporary(path, [&](const std::string& tmp) {
-      if (writer.Write(tmp.c_str()) != IFSelect_RetDone)
-        fail(path, "OpenCASCADE could not write the STEP file");
+    // STEPControl_Writer::Write() prints reals with 13 significant digits (%14.12E), too few
+    // for a surface far from the origin (1e2 apart at 1e15): print 17 so the file round-trips
+    // our doubles, through the same StepData_StepWriter Write() uses.
+    const Handle(StepData_Protocol) protocol =
+        Handle(StepData_Protocol)::DownCast(writer.WS()->Protocol());
+    if (protocol.IsNull()) fail(path, "OpenCASCADE has no STEP protocol");
+    StepData_StepWriter printer(writer.Model());
+    printer.FloatWriter().SetFormat("%.16E");
+    printer.SendModel(protocol);
+    io::write_file_atomically(path, [&](std::ostream& out) {
+      if (!printer.Print(out)) fail(path, "OpenCASCADE could not write the STEP file");
     });
   } catch (const Standard_Failure& f) {
     fail(path, "OpenCASCADE failed writing STEP (" + detail::describe(f) + ")");

@@ -1,4 +1,5 @@
 #include "sfit/io/csv_reader.h"
+#include "sfit/weights.h"
 
 #include <sys/stat.h>
 #include <algorithm>
@@ -127,11 +128,8 @@ class Parser {
     const Point p(number(f[x_]), number(f[y_]), number(f[z_]));
     if (w_ != kNone) {  // [seams] the point's weight (docs/seams.md)
       const double w = number(f[w_]);
-      if (!(w > 0)) {
-        char buf[40];
-        std::snprintf(buf, sizeof buf, "%g", w);
-        fail(ErrorCode::kInputData, f[w_].column, std::string("weight must be > 0, got ") + buf);
-      }
+      if (const std::string why = weight_error(w); !why.empty())
+        fail(ErrorCode::kInputData, f[w_].column, why);
       out_.rows.push_weight(w);
     }
     if (out_.rows.open_row_size() == 0) out_.first_line.push_back(line_no_);

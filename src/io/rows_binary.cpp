@@ -1,4 +1,5 @@
 #include "sfit/io/rows_binary.h"
+#include "sfit/weights.h"
 
 #include <sys/stat.h>
 #include <bit>
@@ -92,9 +93,9 @@ RowsFile read_rows_binary(const std::string& path) {
     if (P && std::fread(w.data(), 8, P, f.get()) != P) syntax(path, "truncated weights");
     for (std::uint64_t j = 0, i = 0; j < M; ++j)
       for (std::uint64_t k = 0; k < lengths[j]; ++k, ++i)
-        if (!(w[i] > 0) || !std::isfinite(w[i]))
+        if (const std::string why = weight_error(w[i]); !why.empty())
           throw Error(
-              ErrorCode::kInputData, "weight must be a finite number > 0",
+              ErrorCode::kInputData, why,
               Place{.file = path, .row = static_cast<long>(j), .point = static_cast<long>(k)},
               {w[i]});
     out.rows.set_weights(std::move(w));

@@ -1,4 +1,5 @@
 #include "sfit/io/rows_reader.h"
+#include "sfit/weights.h"
 
 #include <sys/stat.h>
 #include <array>
@@ -80,7 +81,7 @@ class Parser {
   }
 
   // [seams] An optional 4th number, the point's weight (docs/seams.md): every point has one or
-  // none, and each is a finite number > 0.
+  // none, and each is within kMinWeight ... kMaxWeight (rows.h).
   void weight(int n, double w, std::size_t col) {
     const bool has = n == 4;
     if (out_.rows.points().empty()) weighted_ = has;
@@ -91,11 +92,8 @@ class Parser {
                : "no weight (4th number) here, but the first point has one: give every point "
                  "x y z weight");
     if (!has) return;
-    if (!(w > 0)) {
-      char buf[40];
-      std::snprintf(buf, sizeof buf, "%g", w);
-      fail(ErrorCode::kInputData, col, std::string("weight must be > 0, got ") + buf);
-    }
+    if (const std::string why = weight_error(w); !why.empty())
+      fail(ErrorCode::kInputData, col, why);
     out_.rows.push_weight(w);
   }
 

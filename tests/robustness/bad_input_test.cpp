@@ -166,6 +166,15 @@ Prepared prepare(const Case& c, const std::string& dir, bool with_old_outputs) {
   }
   const std::string ro = dir + "/ro";
   fs::create_directories(ro);
+  // {sticky}: a sticky folder like /tmp holding taken.json, a file of the test's user, which
+  // user nobody may not replace (so the case needs root, as {ro} does).
+  const std::string sticky = dir + "/sticky";
+  if (c.args.find("{sticky}") != std::string::npos) {
+    fs::create_directories(sticky);
+    fs::permissions(sticky, fs::perms::all | fs::perms::sticky_bit);
+    write_file(sticky + "/taken.json", kOld);
+    needs_unprivileged = true;
+  }
   fs::create_directories(dir + "/folder.json");
   auto expand = [&](std::string s) {
     replace_all(s, "{in}", in);
@@ -173,6 +182,7 @@ Prepared prepare(const Case& c, const std::string& dir, bool with_old_outputs) {
     replace_all(s, "{ro}", ro);
     replace_all(s, "{file}", dir + "/file");
     replace_all(s, "{folder}", dir + "/folder.json");
+    replace_all(s, "{sticky}", sticky);
     replace_all(s, "{tmp}", dir);
     return s;
   };
@@ -189,6 +199,7 @@ Prepared prepare(const Case& c, const std::string& dir, bool with_old_outputs) {
                           fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
   if (needs_unprivileged) {
     p.prefix = unprivileged_prefix();
+    if (::geteuid() != 0 && c.args.find("{sticky}") != std::string::npos) p.prefix = "?";
     fs::permissions(dir, fs::perms::all);  // nobody may write the scratch folder itself
   }
   return p;
@@ -205,7 +216,8 @@ TEST_P(BadInput, GivesItsExitCodeAndLineAndLosesNothing) {
   for (int run = 0; run < runs; ++run) {
     SCOPED_TRACE(run == 0 ? "no existing output" : "existing output present");
     const Prepared p = prepare(c, base + "/run" + std::to_string(run), run == 1);
-    if (p.prefix == "?") GTEST_SKIP() << "running as root and cannot drop to user nobody";
+    if (p.prefix == "?")
+      GTEST_SKIP() << "needs root able to drop to user nobody (a {sticky} case: root itself)";
     const auto before = files_under(p.dir);
     const std::string out = p.dir + "/../stdout" + std::to_string(run);
     const std::string err = p.dir + "/../stderr" + std::to_string(run);
@@ -276,7 +288,8 @@ TEST(BadInputCorpus, IsLargeAndCoversEveryCode) {
     EXPECT_TRUE(fs::exists(kCorpus + "/" + file)) << c.name << ": no file " << file;
   }
   EXPECT_GE(cases.size(), 40u);
-  for (int code : {0, 2, 3, 4, 5, 6, 7}) EXPECT_GT(per_code[code], 0) << "no case for exit " << code;
+  for (int code : {0, 2, 3, 4, 5, 6, 7})
+    EXPECT_GT(per_code[code], 0) << "no case for exit " << code;
 }
 
 }  // namespace

@@ -24,7 +24,8 @@ void write_via_temporary(const std::string& path,
 
 /// Throws Error(kOutputWrite) if `path` cannot be created: its folder is missing or not
 /// writable, or it is a directory, or it exists and is not a regular file (a device such as
-/// /dev/null, a pipe: the rename would replace it). Lets the CLI refuse before a long fit.
+/// /dev/null, a pipe: the rename would replace it), or it is another user's file in a sticky
+/// folder such as /tmp (only its owner may replace it). Lets the CLI refuse before a long fit.
 void check_writable(const std::string& path);
 
 /// All or nothing for several outputs. While a batch is open on this thread,
@@ -32,8 +33,11 @@ void check_writable(const std::string& path);
 /// its temporary name beside its target; commit() renames every one onto its target. A batch
 /// destroyed without commit() (a later output failed, a disk filled up) removes every
 /// temporary, so each target is exactly as it was and no new file appears. Batches do not
-/// nest; commit() throws Error(kOutputWrite) naming the target whose rename failed (renames
-/// in one folder of a checked target practically never fail; targets renamed before it stay).
+/// nest. commit() first checks that every rename can succeed (check_writable() again: a
+/// folder made read-only meanwhile, someone else's file in a sticky folder) and keeps each
+/// replaced target's old content aside (a hard link, else a copy); if a rename still fails,
+/// the targets renamed before it get their old content back (new ones are removed) and
+/// Error(kOutputWrite) names the target whose rename failed.
 class OutputBatch {
  public:
   OutputBatch();
