@@ -33,5 +33,6 @@ void bind_surface(py::module_& m);
 void bind_fit(py::module_& m);
 void bind_curve(py::module_& m);
 void bind_io(py::module_& m);
+void bind_partial(py::module_& m);  // sfit.dask's chunk pieces (bind_partial.cpp)
 
 }  // namespace sfit::python

@@ -14,4 +14,5 @@ PYBIND11_MODULE(_sfit, m) {
   sfit::python::bind_curve(m);
   sfit::python::bind_fit(m);
   sfit::python::bind_io(m);
+  sfit::python::bind_partial(m);
 }
