@@ -53,7 +53,7 @@ int run_edit(const EditArgs& a) {
   server::EditorConfig config;
   config.input = a.input;
   config.options = checked.options;
-  note_closed_rows(in, config.options.closed_u, !a.closed.empty(), &config.closed_note);
+  note_closed_rows(in, config.options.closed_u, !a.closed().empty(), &config.closed_note);
   config.units = in.units.empty() ? a.units : in.units;
   config.options.tolerance = checked.tolerance(in.rows);
   const std::vector<long> first_line = in.first_line;

@@ -17,4 +17,5 @@ PYBIND11_MODULE(_sfit, m) {
   sfit::python::bind_io(m);
   sfit::python::bind_eval_module(m);
   sfit::python::bind_options(m);
+  sfit::python::bind_partial(m);
 }

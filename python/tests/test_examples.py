@@ -34,6 +34,7 @@ def test_dask_tiles_on_a_small_grid(tmp_path):
     z = dask_tiles.terrain(90, 130)
     ranges_r = dask_tiles.tile_ranges(90, 40, 4)
     ranges_c = dask_tiles.tile_ranges(130, 40, 4)
+    fitted = {}
     for t in summary["tiles"]:
         (r0, r1), (c0, c1) = ranges_r[t["tile"][0]], ranges_c[t["tile"][1]]
         assert t["x"] == [c0, c1 - 1] and t["y"] == [r0, r1 - 1]
@@ -45,6 +46,19 @@ def test_dask_tiles_on_a_small_grid(tmp_path):
         here = sfit.fit(np.stack([x, y, z[r0:r1, c0:c1]], axis=-1), tol=summary["tolerance"])
         assert np.array_equal(sfit.load_surface(str(out / t["file"])).control_points,
                               here.surface.control_points)
+        fitted[tuple(t["tile"])] = here.surface(here.u, np.repeat(here.v, here.row_sizes)) \
+            .reshape(r1 - r0, c1 - c0, 3)
+    # The seams: the largest difference of two neighbours at the points they share, within
+    # 2T, as measured here from the local fits.
+    seam = np.zeros(3)
+    for (i, j), a in fitted.items():
+        if (i, j + 1) in fitted:
+            w = ranges_c[j][1] - ranges_c[j + 1][0]
+            seam = np.maximum(seam, np.abs(a[:, -w:] - fitted[(i, j + 1)][:, :w]).max((0, 1)))
+        if (i + 1, j) in fitted:
+            w = ranges_r[i][1] - ranges_r[i + 1][0]
+            seam = np.maximum(seam, np.abs(a[-w:] - fitted[(i + 1, j)][:w]).max((0, 1)))
+    assert summary["seam"] == seam.tolist() and 0 < max(summary["seam"]) <= 2 * summary["tolerance"]
 
 
 def test_plot_fit_writes_a_png(tmp_path):

@@ -1,6 +1,5 @@
 #include "tensor_lsq.h"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <array>
@@ -9,7 +8,7 @@
 #include "aligned_fit.h"
 #include "basis.h"
 #include "fit_frame.h"
-#include "kron_pcg.h"
+#include "normal_equations.h"
 #include "parallel.h"
 #include "parameters.h"
 
@@ -19,15 +18,6 @@ namespace {
 // Moments kept per problem (one entry per nu): a bisection over nu for one nv and the next
 // nv's bisection revisit the same few nu.
 constexpr std::size_t kMomentBytes = std::size_t{256} << 20;
-// Below this bound on the factorisation's flops (cost()), Eigen's simplicial Cholesky.
-constexpr double kSimplicialFlops = 2e8;
-// Above this bound, conjugate gradients first (kron_pcg.h; TensorSpec::iterative), where nu
-// is at most this share of the shortest row's points: closer to interpolating the rows, the
-// rows' Gram matrices differ too much for the Kronecker preconditioner (CG then failed to
-// converge in 150 iterations on volcano and the teapot body; 3-25 iterations below it).
-constexpr double kIterativeFlops = 1e6;
-constexpr double kIterativeShare = 0.75;
-
 // Row j resampled at fraction s of its positions f (ascending; closed rows wrap to point 0).
 Point resample(std::span<const Point> row, std::span<const double> f, double s, bool closed) {
   const std::size_t n = row.size();
@@ -52,16 +42,6 @@ bool same_positions(const Rows& rows, const std::vector<double>& positions) {
                                            positions.begin() + rows.offsets()[j]))
       return false;
   return true;
-}
-// `out` as the surface of `spec` at (nu, nv), its control points still to be filled.
-void shape(Surface& out, const TensorSpec& spec, int nu, int nv) {
-  out.degree_u = spec.degree_u;
-  out.degree_v = spec.degree_v;
-  out.periodic_u = spec.closed_u;
-  out.periodic_v = spec.closed_v;
-  out.count_u = nu;
-  out.count_v = nv;
-  out.control.resize(static_cast<std::size_t>(nu) * nv);
 }
 }  // namespace
 
@@ -241,31 +221,8 @@ double TensorProblem::cost(int nu, int nv) const {
   if (shared_u_)  // separable: two banded factorisations and passes over the coefficients
     return 3.0 * (spec_.degree_u + spec_.degree_v + 2) *
            (n + static_cast<double>(nu) * rows_.size());
-  const double band = std::min(static_cast<double>(nu) * spec_.degree_v + spec_.degree_u,
-                               static_cast<double>(nv) * spec_.degree_u + spec_.degree_v) +
-                      1;
-  return n * band * band;
+  return full_cost(spec_, nu, nv);
 }
-
-namespace {
-
-// The symmetric banded matrix sum over equations of b b^T for a curve (count unknowns,
-// width = degree + 1, cyclic when periodic) from its band G(i, i + d), as a sparse matrix.
-Eigen::SparseMatrix<double> band_matrix(const double* G, int count, int width, bool periodic) {
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < count; ++i)
-    for (int d = 0; d < width; ++d) {
-      if (!periodic && i + d >= count) break;
-      const int c = (i + d) % count;
-      if (G[i * width + d] == 0.0) continue;
-      t.emplace_back(std::min(i, c), std::max(i, c), G[i * width + d]);
-    }
-  Eigen::SparseMatrix<double> A(count, count);
-  A.setFromTriplets(t.begin(), t.end());
-  return A;
-}
-
-}  // namespace
 
 // Rows sharing their u (one G): the least squares separates (Kronecker). With R^T R = G and
 // c_j = G^-1 B^T D_j (each row's own fit at nu), sum_j |B (X b_j) - D_j|^2 = sum_j
@@ -310,100 +267,13 @@ bool TensorProblem::solve_separable(int nu, int nv, Surface& out) {
 bool TensorProblem::solve(int nu, int nv, Surface& out) {
   if (shared_u_) return solve_separable(nu, nv, out);
   const Moments& m = moments(nu);
-  const int pu = spec_.degree_u, pv = spec_.degree_v, wu = pu + 1, wv = pv + 1;
-  const int sv = 2 * pv + 1;  // l' - l + pv
-  const std::size_t n = static_cast<std::size_t>(nu) * nv;
+  const int wu = spec_.degree_u + 1;
   const std::vector<double> v = v_at(nv);
-  // A((i, l), (i + d, l')) at st[((i * nv + l) * wu + d) * sv + (l' - l + pv)], d >= 0; for
-  // d = 0 only l' >= l. Unknown (i, l) is number i * nv + l, the Surface's order.
-  std::vector<double> st(n * wu * sv, 0.0);
-  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(n), 3);
-  std::array<double, kMaxDegree + 1> bv;
-  // The Kronecker preconditioner's factors (kron_pcg.h), where CG is tried: Gbar = sum_j G_j /
-  // sum_j s_j and H_s = sum_j s_j b_v b_v^T, s_j = trace(G_j).
-  const bool try_cg =
-      spec_.iterative && cost(nu, nv) >= kIterativeFlops && nu <= kIterativeShare * min_points_;
-  std::vector<double> gbar(try_cg ? static_cast<std::size_t>(nu) * wu : 0, 0.0),
-      hs(try_cg ? static_cast<std::size_t>(nv) * wv : 0, 0.0);
-  double s_sum = 0;
-  for (std::size_t j = 0; j < rows_.size(); ++j) {
-    const int fv = eval_basis(pv, nv, spec_.closed_v, v[j], bv.data());
-    const double* G = &m.gram[(shared_u_ ? 0 : j) * nu * wu];
-    const Point* R = &m.rhs[j * nu];
-    double s_j = 0;
-    if (try_cg) {
-      for (int i = 0; i < nu; ++i) s_j += G[i * wu];
-      for (std::size_t k = 0; k < gbar.size(); ++k) gbar[k] += G[k];
-      s_sum += s_j;
-    }
-    for (int a = 0; a < wv; ++a) {
-      const int l = wrap_index(fv + a, nv);
-      if (try_cg)
-        for (int d = 0; a + d < wv; ++d) hs[l * wv + d] += s_j * bv[a] * bv[a + d];
-      for (int i = 0; i < nu; ++i) rhs.row(i * nv + l) += bv[a] * R[i].transpose();
-      for (int b = 0; b < wv; ++b) {
-        const double wab = bv[a] * bv[b];
-        const int dl = b - a + pv;
-        for (int i = 0; i < nu; ++i) {
-          double* S = &st[((static_cast<std::size_t>(i) * nv + l) * wu) * sv + dl];
-          const double* g = &G[i * wu];
-          if (b >= a) S[0] += wab * g[0];
-          for (int d = 1; d < wu; ++d) S[d * sv] += wab * g[d];
-        }
-      }
-    }
-  }
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(n * wu * sv);
-  for (int i = 0; i < nu; ++i)
-    for (int l = 0; l < nv; ++l) {
-      const long r = static_cast<long>(i) * nv + l;
-      for (int d = 0; d < wu; ++d) {
-        if (!spec_.closed_u && i + d >= nu) break;
-        const int i2 = (i + d) % nu;
-        for (int e = 0; e < sv; ++e) {
-          const double x = st[((static_cast<std::size_t>(r)) * wu + d) * sv + e];
-          if (x == 0.0) continue;
-          int l2 = l + e - pv;
-          if (l2 < 0 || l2 >= nv) {
-            if (!spec_.closed_v) continue;
-            l2 = (l2 + nv) % nv;
-          }
-          const long c = static_cast<long>(i2) * nv + l2;
-          trip.emplace_back(std::min(r, c), std::max(r, c), x);
-        }
-      }
-    }
-  Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-  A.setFromTriplets(trip.begin(), trip.end());
-  Eigen::MatrixX3d x;
-  bool solved = false;
-  if (try_cg && s_sum > 0) {
-    for (double& g : gbar) g /= s_sum;
-    solved = solve_kron_pcg(A, rhs, band_matrix(gbar.data(), nu, wu, spec_.closed_u),
-                            band_matrix(hs.data(), nv, wv, spec_.closed_v), x);
-  }
-  if (solved) {
-    // x is CG's
-  } else if (cost(nu, nv) < kSimplicialFlops) {
-    // Small systems: Eigen's simplicial factorisation. CHOLMOD's supernodal one starts
-    // OpenMP threads and BLAS calls whose overhead was a third of a volcano fit at 1e-3.
-    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt(A);
-    if (llt.info() != Eigen::Success) return false;
-    x = llt.solve(rhs);
-    if (llt.info() != Eigen::Success) return false;
-  } else {
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
-    llt.cholmod().print = 0;  // a singular system is an answer here ("does not hold")
-    llt.compute(A);
-    if (llt.info() != Eigen::Success) return false;
-    x = llt.solve(rhs);
-    if (llt.info() != Eigen::Success) return false;
-  }
-  if (!x.allFinite()) return false;
-  shape(out, spec_, nu, nv);
-  for (std::size_t k = 0; k < n; ++k) out.control[k] = x.row(static_cast<Eigen::Index>(k));
-  return true;
+  const bool try_cg = tries_cg(spec_, nu, nv, min_points_);
+  NormalEquations ne(spec_, nu, nv, try_cg);
+  for (std::size_t j = 0; j < rows_.size(); ++j)
+    ne.add_row(&m.gram[(shared_u_ ? 0 : j) * nu * wu], &m.rhs[j * nu], v[j]);
+  return sfit::detail::solve(ne, try_cg, out);
 }
 
 }  // namespace sfit::detail
