@@ -2,6 +2,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
+#include "progress.h"
 #include "sfit/version.h"
 
 PYBIND11_MODULE(_sfit, m) {
@@ -12,6 +13,7 @@ PYBIND11_MODULE(_sfit, m) {
   sfit::python::bind_errors(m);
   sfit::python::bind_surface(m);
   sfit::python::bind_curve(m);
+  sfit::python::bind_progress(m);
   sfit::python::bind_fit(m);
   sfit::python::bind_io(m);
 }
