@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "output_plan.h"
 #include "outputs.h"
+#include "progress_line.h"
 #include "sfit/error.h"
 #include "sfit/fit_limits.h"
 #include "sfit/fold_check.h"
@@ -95,20 +96,28 @@ int run_fit(const FitArgs& a) {
                   !checked.relative() ? ""
                                       : fmt::format(" ({} of the diagonal {})", g(checked.fraction),
                                                     g(box.diagonal()))));
-  const bool show_progress = verbose && in.rows.total_points() >= 200000 && isatty(2);
-  if (show_progress)
-    o.progress = [](std::string_view stage, std::size_t done, std::size_t total) {
-      std::fprintf(stderr, "sfit: fitting %.*s %zu/%zu\r", static_cast<int>(stage.size()),
-                   stage.data(), done, total);
-      if (done == total) std::fprintf(stderr, "\n");
-    };
+  // SIGINT/SIGTERM stop the fit at its next check and the run writes nothing (exit 128 +
+  // the signal); a line on a terminal shows the progress of a fit taking over a second.
+  const Interruption interrupt;
+  auto interrupted = [&] {
+    std::fprintf(stderr, "sfit: error: %s: %s; nothing written\n", in.name.c_str(),
+                 interrupt.what().c_str());
+    return interrupt.exit_code();
+  };
+  ProgressLine line(verbose);
+  o.progress = line.function(interrupt);
+  o.cancel = interrupt.flag();
 
   FitResult fit;
   try {
     fit = fit_surface(in.rows, o);
   } catch (const Error& e) {
+    line.clear();
+    if (e.code() == ErrorCode::kCancelled && interrupt.signal() != 0) return interrupted();
     rethrow_with_file(e, in);
   }
+  line.clear();
+  if (interrupt.signal() != 0) return interrupted();
   const FitReport& r = fit.report;
   const auto [rmin, rmax] = std::minmax_element(r.row_counts.begin(), r.row_counts.end());
   const auto [cmin, cmax] = std::minmax_element(r.column_counts.begin(), r.column_counts.end());
@@ -127,8 +136,21 @@ int run_fit(const FitArgs& a) {
   if (r.method == FitMethod::kSurface || o.method == FitMethod::kSurface)
     say(fmt::format("method {} ({} norm, {} pairs tried): {}", to_string(r.method),
                     to_string(r.norm), r.pairs_tried, r.stop_reason));
-  if (o.parametrization == Parametrization::kFewest ||
-      (o.parametrization == Parametrization::kAuto && o.method == FitMethod::kSurface))
+  if (o.method == FitMethod::kSurface && !r.rules_searched.empty() &&
+      (o.parametrization == Parametrization::kFewest ||
+       o.parametrization == Parametrization::kAuto)) {
+    std::string searched;
+    for (Parametrization p : r.rules_searched)
+      searched += (searched.empty() ? "" : ", ") + std::string(to_string(p));
+    if (r.method == FitMethod::kSurface)
+      say(fmt::format("{} parameters gave the fewest control points of the rules searched ({})",
+                      to_string(r.parametrization), searched));
+    else
+      say(
+          fmt::format("{} parameters: the two stages' fit, kept over the search's surfaces "
+                      "under {} (the reason above)",
+                      to_string(r.parametrization), searched));
+  } else if (o.method == FitMethod::kSfit01 && o.parametrization == Parametrization::kFewest)
     say(fmt::format("{} parameters gave the fewest control points of the four rules",
                     to_string(r.parametrization)));
   else if (o.parametrization != Parametrization::kAuto && r.parametrization != o.parametrization)
@@ -182,27 +204,34 @@ int run_fit(const FitArgs& a) {
   ctx.obj_freeform = a.obj_freeform;
   ctx.normals = a.normals;
   bool pictures_done = false;
-  plan.write_all([&](const PlannedOutput& out, std::string* text) {
-    switch (out.target) {
-      case OutputTarget::kSurface:
-        return write_output(out.path, ctx, text);
-      case OutputTarget::kReport:
-        if (text)
-          *text = io::report_to_json(r).dump(2) + "\n";
-        else
-          io::write_report_json(out.path, r);
-        return std::string();
-      case OutputTarget::kPicture:
+  try {
+    plan.write_all([&](const PlannedOutput& out, std::string* text) {
+      // A signal before the last output is written: every temporary removed, nothing renamed.
+      if (interrupt.signal() != 0) throw Error(ErrorCode::kCancelled, interrupt.what());
+      switch (out.target) {
+        case OutputTarget::kSurface:
+          return write_output(out.path, ctx, text);
+        case OutputTarget::kReport:
+          if (text)
+            *text = io::report_to_json(r).dump(2) + "\n";
+          else
+            io::write_report_json(out.path, r);
+          return std::string();
+        case OutputTarget::kPicture:
 #ifdef SFIT_HAVE_RENDER
-        if (!pictures_done) write_fit_pictures(a.pngs, a.picture, fit, in.rows, in.name);
+          if (!pictures_done) write_fit_pictures(a.pngs, a.picture, fit, in.rows, in.name);
 #endif
-        pictures_done = true;
-        return std::string();
-      case OutputTarget::kRows:
-        return std::string();
-    }
-    return std::string();
-  });
+          pictures_done = true;
+          return std::string();
+        case OutputTarget::kRows:
+          return std::string();
+      }
+      return std::string();
+    });
+  } catch (const Error& e) {
+    if (e.code() == ErrorCode::kCancelled && interrupt.signal() != 0) return interrupted();
+    throw;
+  }
   return 0;
 }
 

@@ -19,7 +19,7 @@ namespace {
 
 // std::bad_alloc is no sfit::Error (the library lets it through; Python makes it MemoryError):
 // its own exit code, documented in docs/errors.md beside the library's 2 ... 8.
-constexpr int kOutOfMemoryExit = 9;
+constexpr int kOutOfMemoryExit = 10;
 
 // Standard output flushed and without error, or its error line and exit 6: '--help',
 // '--version', 'formats' and '-o -' into a full disk or a closed pipe must not say "done".
@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
       "Run 'sfit COMMAND --help' for the options of a command.\n"
       "Exit codes: 0 ok, 2 usage, 3 input unreadable (also: a STEP/IGES file the CAD kernel\n"
       "crashed on), 4 input syntax, 5 input data, 6 output not written, 7 tolerance not met,\n"
-      "8 internal error (a bug: please report it), 9 out of memory. See docs/errors.md.");
+      "8 internal error (a bug: please report it), 9 cancelled, 10 out of memory,\n"
+      "130/143 interrupted by SIGINT/SIGTERM (nothing written). See docs/errors.md.");
   sfit::cli::Runner run;
   sfit::cli::add_fit_command(app, run);
   sfit::cli::add_convert_command(app, run);

@@ -17,6 +17,7 @@ enum class ErrorCode {
   kOutputWrite,      ///< an output file cannot be written (exit 6)
   kToleranceNotMet,  ///< the surface could not be brought within tolerance (exit 7)
   kInternal,         ///< a bug: an invariant of sfit itself failed (exit 8)
+  kCancelled,        ///< the caller stopped the fit (FitOptions::progress, cancel; exit 9)
 };
 
 /// Where an error is: any field left at its default is unknown or does not apply.
@@ -51,7 +52,7 @@ class Error : public std::runtime_error {
   std::vector<double> values_;
 };
 
-/// Exit code of the CLI for `code` (2 ... 8; 0 is success, 1 is never used).
+/// Exit code of the CLI for `code` (2 ... 9; 0 is success, 1 is never used).
 int exit_code(ErrorCode code) noexcept;
 /// Short stable name of `code`, e.g. "input-syntax".
 const char* to_string(ErrorCode code) noexcept;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <functional>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "sfit/curve_fit.h"
 #include "sfit/fit_limits.h"
 #include "sfit/parametrization.h"
+#include "sfit/progress.h"
 #include "sfit/rows.h"
 #include "sfit/seam_alignment.h"
 #include "sfit/surface.h"
@@ -76,8 +78,12 @@ struct FitOptions {
   /// A surface that folds between rows (fold_check.h) is refitted with another rule across
   /// the rows. false, with seam and orient kKeep: the paper's scheme exactly.
   bool fold_guard = true;
-  /// Called between stages: (stage name, items done, items in the stage).
-  std::function<void(std::string_view, std::size_t, std::size_t)> progress;
+  /// Progress of the fit (sfit/progress.h): phase, pairs tried, best so far, time; false
+  /// stops the fit (Error kCancelled). Never changes a result.
+  ProgressFunction progress;
+  /// When set and true, the fit stops (Error kCancelled) at its next check, on any thread,
+  /// within about kProgressInterval of work; may be set from a signal handler.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 /// What a fit achieved (docs/surface-json.md, "The report").
@@ -120,6 +126,8 @@ struct FitReport {
   double box_excursion = 0;  ///< largest distance of the sampled surface outside the data's box
   double fold = 0;           ///< how far the surface doubles back between rows (fold_check.h)
   double row_gap = 0;        ///< largest distance, sampled between rows, to the nearer data row
+  /// kSurface: the rules whose pairs the search tried, in order (empty: no search, e.g. T = 0).
+  std::vector<Parametrization> rules_searched;
 };
 
 struct FitResult {

@@ -73,6 +73,16 @@ class Fit:
     row_sizes: list[int]
     def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm", obj_freeform: bool = False, normals: str = "auto") -> None: ...
 
+class FitProgress:
+    """What a fit is doing, passed to the `progress` callable of sfit.fit()."""
+
+    phase: str  # "search", "lower bound", "rows", "columns", "check", "fold guard"
+    done: int
+    total: int
+    pairs_tried: int
+    best: tuple[int, int] | None  # the fewest (nu, nv) found to hold so far
+    seconds: float
+
 def fit(
     rows: Rows,
     tol: PerAxis | None = None,
@@ -93,7 +103,7 @@ def fit(
     threads: int = 0,
     row_count_hints: Sequence[int] | None = None,
     column_count_hints: Sequence[int] | None = None,
-    progress: Callable[[str, int, int], None] | None = None,
+    progress: Callable[[FitProgress], bool | None] | None = None,
 ) -> Fit:
     """Fits rows of points ((N_j, 3) arrays, or an (M, N, 3) array; a 4th column: weights)
     within tolerance T. Every option's default is the library's (sfit.fit_options(), docs/options.md)."""

@@ -10,8 +10,8 @@ class Error(ValueError):
     Attributes:
         code: the stable name of the error ("usage", "input-unreadable",
             "input-syntax", "input-data", "output-write", "tolerance-not-met",
-            "internal").
-        exit_code: the CLI's exit code for it (2 ... 8).
+            "internal", "cancelled").
+        exit_code: the CLI's exit code for it (2 ... 9).
         message: the bare message, without the place.
         file, line, column: where in an input file (None if unknown).
         row, index: the 0-based row and point in it (None if unknown).

@@ -7,6 +7,7 @@
 #include "convert.h"
 #include "errors.h"
 #include "options.h"
+#include "progress.h"
 #include "sfit/incremental.h"
 #include "sfit/io/surface_json.h"
 #include "surface_json_value.h"
@@ -149,12 +150,9 @@ void bind_fit(py::module_& m) {
         }
         const Settings settings = settings_from(kwargs);
         auto r = std::make_shared<Rows>(rows_from(rows));
-        const FitOptions o = resolve(*r, settings);
+        FitOptions o = resolve(*r, settings);
         FitResult result;
-        {
-          py::gil_scoped_release nogil;
-          result = fit_surface(*r, o);
-        }
+        run_fit(o, [&] { result = fit_surface(*r, o); });  // Ctrl-C, progress (progress.h)
         return make_fit(std::move(result), std::move(r));
       },
       py::arg("rows"), py::arg("tol") = py::none(),

@@ -3,6 +3,7 @@
 
 #include "bindings.h"
 #include "eval.h"
+#include "progress.h"
 #include "sfit/version.h"
 
 PYBIND11_MODULE(_sfit, m) {
@@ -13,6 +14,7 @@ PYBIND11_MODULE(_sfit, m) {
   sfit::python::bind_errors(m);
   sfit::python::bind_surface(m);
   sfit::python::bind_curve(m);
+  sfit::python::bind_progress(m);
   sfit::python::bind_fit(m);
   sfit::python::bind_io(m);
   sfit::python::bind_eval_module(m);

@@ -3,10 +3,14 @@
 #include <memory>
 #include <vector>
 
+#include "basis.h"
 #include "convert.h"
 #include "errors.h"
+#include "progress.h"
 #include "sfit/error.h"
 #include "sfit/options.h"
+#include "sfit/option_names.h"
+#include "sfit/parametrization.h"
 
 namespace sfit::python {
 namespace {
@@ -102,21 +106,13 @@ const std::vector<Extra>& extras() {
        [](Settings& s, py::handle v, const char* n) {
          s.options.column_count_hints = integers(v, n);
        }},
-      {"progress", "callable(stage, done, total) called between the fit's stages (with the GIL)",
+      {"progress",
+       "callable(sfit.FitProgress) called as the fit goes (phase, pairs tried, best so far, "
+       "seconds; with the GIL); returning False stops the fit (sfit.Error 'cancelled')",
        [](Settings& s, py::handle v, const char* n) {
          if (!PyCallable_Check(v.ptr()))
            usage_error(n, "expected a callable, got " + std::string(py::str(py::repr(v))));
-         // Shared, never copied as a Python object while the GIL is released; released
-         // with the GIL held.
-         std::shared_ptr<py::object> f(new py::object(py::reinterpret_borrow<py::object>(v)),
-                                       [](py::object* o) {
-                                         py::gil_scoped_acquire gil;
-                                         delete o;
-                                       });
-         s.options.progress = [f](std::string_view stage, std::size_t done, std::size_t total) {
-           py::gil_scoped_acquire gil;
-           (*f)(std::string(stage), done, total);
-         };
+         s.options.progress = python_progress(v);
        }},
   };
   return table;

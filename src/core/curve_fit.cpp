@@ -9,6 +9,7 @@
 
 #include "banded_lsq.h"
 #include "basis.h"
+#include "fit_monitor.h"
 #include "parameters.h"
 #include "sfit/error.h"
 #include "thread_cache.h"
@@ -220,6 +221,7 @@ CurveFit fit_curve(std::span<const Point> points, const CurveFitOptions& o) {
   // Does `count` hold? Keeps the fit when it does. The interpolant (count n) always holds: at
   // the positions if they give one within the bound, at the paper's parameters otherwise.
   auto holds = [&](int count) {
+    detail::tick();  // a long row's search stops here when the fit is cancelled
     Point dev;
     ++solves;
     const Collocation* used = nullptr;

@@ -36,6 +36,7 @@ std::size_t fit_curves(std::size_t n_curves, const PointsOf& points_of,
         if (weights_of) co.weights = weights_of(i);  // weighted least squares
         fits[i] = fit_curve(points_of(i), co);
         ++fitted[b];
+        if (FitMonitor* m = current_monitor()) m->step();
       }
       previous = passes_on(fits[i], previous);
     }

@@ -29,6 +29,8 @@ int exit_code(ErrorCode code) noexcept {
       return 7;
     case ErrorCode::kInternal:
       return 8;
+    case ErrorCode::kCancelled:
+      return 9;
   }
   return 8;
 }
@@ -49,6 +51,8 @@ const char* to_string(ErrorCode code) noexcept {
       return "tolerance-not-met";
     case ErrorCode::kInternal:
       return "internal";
+    case ErrorCode::kCancelled:
+      return "cancelled";
   }
   return "internal";
 }

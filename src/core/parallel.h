@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "fit_monitor.h"
 #include "sfit/fit_limits.h"
 
 namespace sfit::detail {
@@ -33,12 +34,18 @@ inline int resolve_threads(int requested) {
 bool run_on_pool(int helpers, const std::function<void()>& work);
 
 /// Calls f(i) for i in [0, n), on up to `threads` threads (dynamic chunks). The first
-/// exception thrown by any f is rethrown here after all threads stop.
+/// exception thrown by any f is rethrown here after all threads stop. The fit's monitor
+/// (fit_monitor.h) goes with the work to every thread, and ticks before each f(i): a
+/// cancelled fit stops every thread at its next index.
 template <class F>
 void parallel_for(std::size_t n, int threads, F&& f) {
   threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads), n));
+  FitMonitor* const monitor = current_monitor();
   if (threads <= 1) {
-    for (std::size_t i = 0; i < n; ++i) f(i);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (monitor) monitor->tick();
+      f(i);
+    }
     return;
   }
   std::atomic<std::size_t> next{0};
@@ -46,12 +53,16 @@ void parallel_for(std::size_t n, int threads, F&& f) {
   std::mutex error_mutex;
   const std::size_t chunk = std::max<std::size_t>(1, n / (static_cast<std::size_t>(threads) * 8));
   const std::function<void()> worker = [&] {
+    const MonitorScope scope(monitor);
     while (true) {
       const std::size_t begin = next.fetch_add(chunk);
       if (begin >= n) return;
       const std::size_t end = std::min(n, begin + chunk);
       try {
-        for (std::size_t i = begin; i < end; ++i) f(i);
+        for (std::size_t i = begin; i < end; ++i) {
+          if (monitor) monitor->tick();
+          f(i);
+        }
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();

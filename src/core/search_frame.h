@@ -31,7 +31,8 @@ struct Frame {
   Frame(const Rows& rows, const FitOptions& o);
 
   /// Whether a candidate (centred) holds: every point of the rows (or of `sample`, a subset
-  /// of them at the same positions) within T per axis and within min T of the surface, and
+  /// of them at the same positions) within T per axis and inside the ellipsoid of semi-axes T
+  /// around its surface point (the ball of radius T where T is one number), and
   /// every guard (fit_frame.h) passed. The verdict's ratio is the worst |S - D| / T over the
   /// points and axes; without `out` the pass stops once a point misses T by more than
   /// kLinfReach (the ratio is then a value above it: all the search asks), with `out` it is

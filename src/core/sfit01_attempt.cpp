@@ -9,6 +9,7 @@
 #include "common_count.h"
 #include "curve_stage.h"
 #include "fit_frame.h"
+#include "fit_monitor.h"
 #include "parallel.h"
 #include "transverse_stage.h"
 
@@ -35,7 +36,11 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   const Rows& rows = centred_;
   const std::size_t M = rows.size();
   auto report = [&](std::string_view stage, std::size_t done, std::size_t total) {
-    if (o_.progress) o_.progress(stage, done, total);
+    if (done == 0) {
+      progress_phase(stage, total);
+    } else {
+      progress_advance(done);
+    }
   };
   std::size_t longest = 0;
   for (std::size_t j = 0; j < M; ++j) longest = std::max(longest, rows[j].size());

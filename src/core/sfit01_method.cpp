@@ -10,6 +10,7 @@
 #include "deviation.h"
 #include "final_check.h"
 #include "fit_frame.h"
+#include "fit_monitor.h"
 #include "sfit/error.h"
 #include "sfit/fold_check.h"
 #include "sfit01_attempt.h"
@@ -110,6 +111,7 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
   const double t0 = now();
   FitResult r = fit_rule_unguarded(rows, requested);
   if (!o_.fold_guard || !folds(r)) return r;
+  progress_phase("fold guard", 2);
   const Parametrization used = rule_;
   std::optional<FitResult> best;
   for (Parametrization across : {Parametrization::kChord, Parametrization::kCentripetal}) {
@@ -208,7 +210,9 @@ FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
     } else {
       valid_ = false;  // the kept state is not the first attempt's
     }
+    progress_phase("check", 1);
     check = check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_, threads_);
+    progress_advance(1);
     if (check.within || tightenings == 3) break;
     ++tightenings;
   }

@@ -1,6 +1,9 @@
 // fit_surface(): the method's dispatch, and the names of methods and norms.
 #include "sfit/surface_fit.h"
 
+#include <optional>
+
+#include "fit_monitor.h"
 #include "surface_fitter.h"
 
 namespace sfit {
@@ -40,6 +43,10 @@ bool parse_fit_norm(std::string_view name, FitNorm& out) {
 }
 
 FitResult fit_surface(const Rows& rows, const FitOptions& o) {
+  // Progress and cancel (sfit/progress.h) for the whole fit, on every thread it uses.
+  std::optional<detail::FitMonitor> monitor;
+  if (detail::FitMonitor::wanted(o) && !detail::current_monitor()) monitor.emplace(o);
+  const detail::MonitorScope scope(monitor ? &*monitor : detail::current_monitor());
   detail::SurfaceFitter fitter(o);
   return fitter.fit(rows);
 }

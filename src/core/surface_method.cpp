@@ -13,6 +13,7 @@
 #include "basis.h"
 #include "deviation.h"
 #include "fit_frame.h"
+#include "fit_monitor.h"
 #include "minimax.h"
 #include "pair_search.h"
 #include "parallel.h"
@@ -68,6 +69,54 @@ bool folds(const FitResult& f, const BoundingBox& box) {
   return f.report.fold > kFoldRelative * box.diagonal();
 }
 
+// Fewer rows than degree_v + 1, open across: no least-squares fit of that degree across them.
+// The search then fits at degree M - 1 across (nv = M, through the rows' direction as the two
+// stages' columns go) and raises each surface exactly to degree_v (nv = degree_v + 1, the
+// two stages' shape), so its pairs, its bound and its result count the surface it returns.
+class FewRows {
+ public:
+  FewRows(std::size_t rows, const FitOptions& o) {
+    if (!o.closed_v && rows >= 2 && rows < static_cast<std::size_t>(o.degree_v) + 1) {
+      rows_ = static_cast<int>(rows);
+      degree_ = o.degree_v;
+    }
+  }
+  /// The options the search's problems are made with.
+  FitOptions options(FitOptions o) const {
+    if (degree_ > 0) o.degree_v = rows_ - 1;
+    return o;
+  }
+  /// The problem's nv for the surface's nv.
+  int nv(int n) const { return degree_ > 0 ? rows_ : n; }
+  int min_v(int problem) const { return degree_ > 0 ? degree_ + 1 : problem; }
+  int max_v(int problem) const { return degree_ > 0 ? degree_ + 1 : problem; }
+  /// The problem's surface raised to degree_v across (degree elevation of the one Bezier
+  /// segment across: the same surface).
+  std::optional<Surface> raise(std::optional<Surface> s) const {
+    if (degree_ == 0 || !s) return s;
+    while (s->degree_v < degree_) {
+      const int p = s->degree_v;
+      Surface e = *s;
+      e.degree_v = p + 1;
+      e.count_v = p + 2;
+      e.control.assign(static_cast<std::size_t>(e.count_u) * e.count_v, Point::Zero());
+      for (int i = 0; i < e.count_u; ++i) {
+        e.at(i, 0) = s->at(i, 0);
+        e.at(i, p + 1) = s->at(i, p);
+        for (int k = 1; k <= p; ++k) {
+          const double a = static_cast<double>(k) / (p + 1);
+          e.at(i, k) = a * s->at(i, k - 1) + (1 - a) * s->at(i, k);
+        }
+      }
+      s = std::move(e);
+    }
+    return s;
+  }
+
+ private:
+  int rows_ = 0, degree_ = 0;  // degree_ 0: as many rows as the degree needs
+};
+
 }  // namespace
 
 // A lower bound on the two-stage fit's nu x nv at the paper's rule: its nu is at least every
@@ -121,14 +170,20 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   std::optional<FitResult> base;
   long bound = LONG_MAX, lower = 0;
   if (defer_base) {
+    progress_phase("lower bound", 1);
     lower = sfit01_lower_bound(rows, o);
+    progress_advance(1);
   } else {
     base = SurfaceFitter(o1).fit_aligned(rows, seam_offsets);
-    if (base->report.within_tolerance)
+    if (base->report.within_tolerance) {
       bound = static_cast<long>(base->surface.count_u) * base->surface.count_v;
+      if (FitMonitor* m = current_monitor()) m->found(base->surface.count_u, base->surface.count_v);
+    }
   }
 
   const Frame fr(rows, o);
+  const FewRows few(rows.size(), o);
+  const FitOptions os = few.options(o);  // the search's problems
   std::optional<Candidate> best;
   long tried = 0, over_budget = 0;
   // At T = 0 only interpolation holds, which the two stages give with the fewest control
@@ -137,29 +192,40 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   const std::size_t points = fr.centred.total_points();
   const std::size_t step =
       points > kSearchPoints ? (points + kSearchPoints - 1) / kSearchPoints : 1;
-  for (Parametrization rule : rules_of(o.parametrization)) {
+  const std::vector<Parametrization> rules = rules_of(o.parametrization);
+  progress_phase("search", rules.size());
+  FitMonitor* const monitor = current_monitor();
+  std::size_t rules_done = 0;
+  std::vector<Parametrization> searched;
+  for (Parametrization rule : rules) {
+    if (rules_done > 0) progress_advance(rules_done);
+    ++rules_done;
     if (interpolate) break;
     // Nothing below the bound can hold: the smallest pair is (degree + 1)^2.
     if (bound <= static_cast<long>(o.degree_u + 1) * (o.degree_v + 1)) break;
     // The paper's parameters depend on a row's length, so a sample of the row has others:
     // on large data that rule is the two-stage fit's alone.
     if (step > 1 && rule == Parametrization::kPaper) continue;
-    TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads, seam_offsets));
-    const PairRange range{prob.min_u(), prob.max_u(), prob.min_v(), prob.max_v(),
-                          [&](int nu, int nv) {
-                            return prob.cost(nu, nv) <= solve_budget(fr.centred.total_points());
+    searched.push_back(rule);
+    TensorProblem prob(fr.centred, spec_of(os, rule, fr.threads, seam_offsets));
+    const PairRange range{prob.min_u(), prob.max_u(), few.min_v(prob.min_v()),
+                          few.max_v(prob.max_v()), [&](int nu, int nv) {
+                            return prob.cost(nu, few.nv(nv)) <=
+                                   solve_budget(fr.centred.total_points());
                           }};
     PairOracle l2([&](int nu, int nv) {
       // More control points than points leave the system singular.
-      if (static_cast<double>(nu) * nv > static_cast<double>(fr.centred.total_points()))
+      if (static_cast<double>(nu) * few.nv(nv) > static_cast<double>(fr.centred.total_points()))
         return PairVerdict{false, HUGE_VAL};
-      if (prob.cost(nu, nv) > solve_budget(fr.centred.total_points())) {
+      if (prob.cost(nu, few.nv(nv)) > solve_budget(fr.centred.total_points())) {
         ++over_budget;
         return PairVerdict{false, HUGE_VAL};
       }
-      auto s = solve_pair(prob, FitNorm::kL2, nu, nv, o.tolerance);
-      if (!s) return PairVerdict{false, HUGE_VAL};
-      return fr.judge(*s, prob.u_at(nu), prob.v_at(nv));
+      auto s = few.raise(solve_pair(prob, FitNorm::kL2, nu, few.nv(nv), o.tolerance));
+      const PairVerdict verdict =
+          s ? fr.judge(*s, prob.u_at(nu), prob.v_at(few.nv(nv))) : PairVerdict{false, HUGE_VAL};
+      if (monitor) monitor->pair_tried(nu, nv, verdict.holds);
+      return verdict;
     });
     PairChoice choice;
     if (step == 1) {
@@ -167,19 +233,22 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     } else {
       std::vector<double> sample_positions;
       const Rows sample = subsample(fr.centred, step, prob.positions_u(), sample_positions);
-      TensorProblem sp(sample, spec_of(o, rule, fr.threads, seam_offsets),
+      TensorProblem sp(sample, spec_of(os, rule, fr.threads, seam_offsets),
                        std::move(sample_positions), prob.positions_v());
       PairOracle on_sample([&](int nu, int nv) {
-        if (static_cast<double>(nu) * nv > static_cast<double>(sample.total_points()) ||
-            sp.cost(nu, nv) > solve_budget(sample.total_points()))
+        if (static_cast<double>(nu) * few.nv(nv) > static_cast<double>(sample.total_points()) ||
+            sp.cost(nu, few.nv(nv)) > solve_budget(sample.total_points()))
           return PairVerdict{false, HUGE_VAL};
-        auto s = solve_pair(sp, FitNorm::kL2, nu, nv, o.tolerance);
+        auto s = few.raise(solve_pair(sp, FitNorm::kL2, nu, few.nv(nv), o.tolerance));
+        if (monitor) monitor->pair_tried(nu, nv, false);  // holding on a sample is no best
         if (!s) return PairVerdict{false, HUGE_VAL};
-        return fr.judge(*s, sp.u_at(nu), sp.v_at(nv), nullptr, &sample);
+        return fr.judge(*s, sp.u_at(nu), sp.v_at(few.nv(nv)), nullptr, &sample);
       });
-      const PairRange sample_range{
-          sp.min_u(), sp.max_u(), sp.min_v(), sp.max_v(),
-          [&](int nu, int nv) { return sp.cost(nu, nv) <= solve_budget(sample.total_points()); }};
+      const PairRange sample_range{sp.min_u(), sp.max_u(), few.min_v(sp.min_v()),
+                                   few.max_v(sp.max_v()), [&](int nu, int nv) {
+                                     return sp.cost(nu, few.nv(nv)) <=
+                                            solve_budget(sample.total_points());
+                                   }};
       const PairChoice c = search_pairs(sample_range, bound, on_sample);
       tried += on_sample.tried();
       if (c.nu > 0) {
@@ -214,9 +283,11 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
       // Minimax from the least-squares choice (or the two-stage pair) downwards, at pairs
       // where least squares missed T by a little (kAuto) or at all (kLinf).
       PairOracle linf([&](int nu, int nv) {
-        auto s = solve_pair(prob, FitNorm::kLinf, nu, nv, o.tolerance);
-        if (!s) return PairVerdict{false, HUGE_VAL};
-        return fr.judge(*s, prob.u_at(nu), prob.v_at(nv));
+        auto s = few.raise(solve_pair(prob, FitNorm::kLinf, nu, few.nv(nv), o.tolerance));
+        const PairVerdict verdict =
+            s ? fr.judge(*s, prob.u_at(nu), prob.v_at(few.nv(nv))) : PairVerdict{false, HUGE_VAL};
+        if (monitor) monitor->pair_tried(nu, nv, verdict.holds);
+        return verdict;
       });
       int linf_left = kLinfTries;
       auto worth = [&](int nu, int nv) {
@@ -249,6 +320,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
       best = found;
     }
   }
+  progress_advance(rules.size());
   std::string deferred;
   if (defer_base) {
     if (best && static_cast<long>(best->nu) * best->nv <= lower) {
@@ -266,6 +338,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     FitResult& b = *base;
     b.report.method = FitMethod::kSfit01;
     b.report.pairs_tried = tried;
+    b.report.rules_searched = searched;
     b.report.stop_reason =
         interpolate ? "sfit01: T = 0 interpolates" : "sfit01: no smaller pair held";
     if (over_budget > 0)
@@ -274,20 +347,24 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     return std::move(b);
   }
   // Remake the winner (deterministic: the same bits as when it was judged) and check it.
-  TensorProblem prob(fr.centred, spec_of(o, best->rule, fr.threads, seam_offsets));
-  Surface s = *solve_pair(prob, best->norm, best->nu, best->nv, o.tolerance);
-  std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(best->nv);
+  TensorProblem prob(fr.centred, spec_of(os, best->rule, fr.threads, seam_offsets));
+  Surface s = *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
+  std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(few.nv(best->nv));
   DeviationCheck c;
+  progress_phase("check", 1);
   fr.judge(s, u, v, &c);
+  progress_advance(1);
   FitResult out = assemble(fr, std::move(s), std::move(u), std::move(v), c, o);
   // The fold guard (docs/seams.md): a winner that doubles back on itself between the rows
   // yields to the two stages' surface, which guards its own folds.
   if (o.fold_guard && folds(out, fr.box)) {
+    progress_phase("fold guard", 1);
     if (!base) base = SurfaceFitter(o1).fit_aligned(rows, seam_offsets);
     if (base->report.within_tolerance && base->report.fold < out.report.fold) {
       FitResult& b = *base;
       b.report.method = FitMethod::kSfit01;
       b.report.pairs_tried = tried;
+      b.report.rules_searched = searched;
       b.report.stop_reason = "sfit01: the search's " + std::to_string(best->nu) + " x " +
                              std::to_string(best->nv) + " folds more between the rows";
       b.report.seconds = now() - t0;
@@ -298,6 +375,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   r.parametrization = best->rule;
   r.norm = best->norm;
   r.pairs_tried = tried;
+  r.rules_searched = std::move(searched);
   r.stop_reason = best->stop + deferred;
   if (over_budget > 0)
     r.stop_reason += " (" + std::to_string(over_budget) + " pairs over the solve budget)";

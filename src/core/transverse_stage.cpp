@@ -73,7 +73,11 @@ Columns fit_columns(const Rows& rows, const std::vector<Rerepresentation>& row_c
                     Parametrization across, const FitOptions& o, const Point& bound, int threads) {
   const std::size_t M = rows.size();
   auto report = [&](std::string_view stage, std::size_t done, std::size_t total) {
-    if (o.progress) o.progress(stage, done, total);
+    if (done == 0) {
+      progress_phase(stage, total);
+    } else {
+      progress_advance(done);
+    }
   };
   // Column i holds control point i of every row curve.
   std::vector<Point> columns(static_cast<std::size_t>(nu) * M);
