@@ -5,7 +5,12 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/install-deps.sh
 jobs=$(nproc)
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSFIT_BUILD_TESTS=ON -DSFIT_BUILD_BENCH=ON
+# ccache where it is installed (not a dependency: a developer's rebuilds, and the stages after
+# this one, compile the same objects again).
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSFIT_BUILD_TESTS=ON -DSFIT_BUILD_BENCH=ON \
+  "${launcher[@]}"
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs"
 for stage in scripts/test.d/*.sh; do

@@ -8,7 +8,9 @@ cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 start=$(date +%s)
 jobs=$(nproc)
 dir="${ASAN_BUILD_DIR:-build-asan}"
-cmake --preset asan -B "$dir" >/dev/null
+launcher=()  # ccache where it is installed
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake --preset asan -B "$dir" "${launcher[@]}" >/dev/null
 cmake --build "$dir" -j "$jobs"
 built=$(date +%s)
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"

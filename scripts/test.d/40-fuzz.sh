@@ -11,7 +11,9 @@ seconds="${FUZZ_SECONDS:-60}"
 work="${FUZZ_WORK:-build-fuzz/run}"
 start=$(date +%s)
 
-cmake --preset fuzz >/dev/null
+launcher=()  # ccache where it is installed
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake --preset fuzz "${launcher[@]}" >/dev/null
 cmake --build --preset fuzz -j "$(nproc)"
 bin=build-fuzz/fuzz
 cli=build-fuzz/apps/sfit/sfit
