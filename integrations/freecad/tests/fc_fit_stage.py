@@ -123,6 +123,8 @@ def stage_fit():
     c = feature.create(doc, scans, name="ScanFit", ToleranceMode="Absolute", Tolerance=0.01)
     d = feature.create(doc, [], os.path.join(job["examples"], "ship_px121_stations.rows"),
                        name="ShipFit")
+    d1 = feature.create(doc, [], os.path.join(job["examples"], "ship_px121_stations.rows"),
+                        name="ShipSfit01", Method="sfit01")  # the paper's two stages
     box = doc.addObject("Part::Box", "Block")
     box.Length, box.Width, box.Height = 30, 20, 10
     box.Placement = App.Placement(V(100, 0, 0), App.Rotation(V(0, 0, 1), 30))
@@ -137,7 +139,7 @@ def stage_fit():
     t = feature.create(doc, tube + tube[:1], name="TorusFit", ToleranceMode="Absolute",
                        Tolerance=0.02)  # the first section again at the end: closed in v
     doc.recompute()
-    for o in (a, b, c, d, e, t):
+    for o in (a, b, c, d, d1, e, t):
         record(o.Name, o)
     before = shape_record(a)["poles"]
     results["export"] = export_record(a)
@@ -153,10 +155,10 @@ def stage_fit():
     rings[4].Placement = App.Placement(V(0, 0, 45), App.Rotation())
     doc.recompute()
     record("RingFit_moved", a)
-    # Faults: a missing file, a method the module lacks: the feature fails with a message.
+    # Faults: a missing file, a single section: the feature fails with a message.
     faults = {}
     for name, kw in (("MissingFile", {"source_file": "/nonexistent/sections.rows"}),
-                     ("NoMethod", {"sources": rings, "Method": "sfit01"})):
+                     ("OneSection", {"sources": rings[:1]})):
         bad = feature.create(doc, name=name, **kw)
         doc.recompute()
         try:

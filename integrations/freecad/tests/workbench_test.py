@@ -13,7 +13,7 @@ A sketch edited (a radius constraint 12 -> 15) and recomputed refits: the poles 
 every point within T again and the poles equal the CLI's for the edited rows.
 Eight circles around an axis, the first selected again at the end, are detected closed in u
 and v. Four edges picked on a placed box (SourceEdges) are four rows.
-A missing source file and a method the module lacks fail the feature with a message.
+A missing source file and a single section fail the feature with a message.
 Stage "reopen": the saved document opened in a new freecadcmd, the module found through the
 FreeCAD parameter instead: every feature there with its proxy class and sources, its saved
 shape the one fitted, and a recompute gives the same poles.
@@ -190,7 +190,7 @@ def main():
     fit = run_stage("fit", out)
     cases = fit["cases"]
     for name, closed in (("RingFit", "u"), ("WingFit", ""), ("ScanFit", ""), ("ShipFit", ""),
-                         ("EdgeFit", ""), ("TorusFit", "uv"),
+                         ("ShipSfit01", ""), ("EdgeFit", ""), ("TorusFit", "uv"),
                          ("RingFit_edited", "u"), ("RingFit_moved", "u")):
         if check(name in cases, f"{name}: recorded"):
             check_case(name, cases[name], out, closed)
@@ -204,7 +204,7 @@ def main():
     check(fit.get("edge_count") == 4 and cases.get("EdgeFit", {}).get("rows_count") == 4,
           f"EdgeFit: the four vertical edges picked on a placed box are four rows "
           f"({fit.get('edge_count')}, {cases.get('EdgeFit', {}).get('rows_count')})")
-    for name, want in (("MissingFile", "no such file"), ("NoMethod", "no 'method' option")):
+    for name, want in (("MissingFile", "no such file"), ("OneSection", "2 rows")):
         f = fit.get("faults", {}).get(name, {})
         check("Invalid" in f.get("state", []) and want in (f.get("message") or ""),
               f"{name}: the feature fails with a message ({f.get('message')}, {f.get('state')})")
