@@ -218,7 +218,9 @@ test("SIGTERM during a long refit: the server ends promptly, the refit abandoned
     assert.equal(r.code, 0, r.err);
     // Not a timing assertion: a bound ten times the grace, against the minutes of the refit.
     assert.ok(took < 15000, `exit ${took} ms after SIGTERM`);
-    if (!answered) assert.match(r.err, /stopped \(the refit under way was abandoned\)/);
+    // The refit may end just before the stop (the count search is bounded now), its answer
+    // lost with the connection: then the server says plainly that it stopped.
+    assert.match(r.err, answered ? /sfit: stopped/ : /sfit: stopped( \(the refit under way was abandoned\))?\n/);
     console.log(`# SIGTERM to exit: ${took} ms; the move ${answered ? "had answered" : "was abandoned"}`);
   } finally { rmSync(dir, { recursive: true, force: true }); }
 });

@@ -20,7 +20,7 @@ _sfit.Surface.curvature = _curvature
 _install(
     _sfit,
     classes=[_sfit.Surface, _sfit.Fit, _sfit.IncrementalFit, _sfit.Curve, _sfit.CurveFit],
-    functions=["fit", "fit_curve", "load_rows", "load_surface", "output_formats"],
+    functions=["fit", "fit_curve", "fit_options", "load_rows", "load_surface", "output_formats"],
     fit_like={"fit", "IncrementalFit.__init__"},
 )
 

@@ -165,13 +165,7 @@ def fit_curve(
     degree: int = 3,
     closed: bool = False,
     search: str = "fast",
-    parameters: str = "auto",
-    method: str = "surface",
-    norm: str = "auto",
-    seam: str = "align",
-    orient: str = "auto",
-    fold_guard: bool = True,
-    rerepresent: str = "paper",
+    parameters: str = "paper",
     hint: int = 0,
 ) -> CurveFit: ...
 def load_rows(path: str) -> list[npt.NDArray[np.float64]]:

@@ -186,7 +186,8 @@ FitOptions options_from_json(const json& r, const FitOptions& current) {
        {"search", "parameters", "method", "norm", "seam", "orient", "rerepresent", "fold_guard"})
     if (r.contains(name))
       set_fit_option(st, name, value_of(*find_option(name), r[name], name), name);
-  if (st.options.search == CountSearch::kKnown)
+  // "known" is the hold's own setting (src/server/hold.cpp), never a request's.
+  if (r.contains("search") && st.options.search == CountSearch::kKnown)
     bad("search", "\"known\" needs count hints, which the editor does not give");
   st.options.row_count_hints.clear();
   st.options.column_count_hints.clear();

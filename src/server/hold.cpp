@@ -53,7 +53,8 @@ FitOptions options_with_hold(const json& body, const Session& session, FitMethod
     hold = body["hold"].get<bool>();
   }
   if (!hold) {
-    release(o, method);
+    // A method the request names stays; a released hold returns to the session's method.
+    release(o, rest.contains("method") || !held(session.options()) ? o.method : method);
   } else if (!held(session.options()) || o.method != FitMethod::kSurface) {
     hold_at(o, session.result().report);  // newly held, or the two stages' counts kept
     if (rest.contains("parameters")) o.parametrization = options_from_json(rest, o).parametrization;
