@@ -326,7 +326,9 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     def attempt(nu, nv):
         control, guard = solve(nu, nv)
         dev = check(control) if control is not None else None
-        holds = dev is not None and guard is None and bool(np.all(dev <= T + roundoff))
+        # The round-off allowance only on an axis whose T is 0, as in the library.
+        holds = dev is not None and guard is None and bool(
+            np.all(dev <= T + np.where(T == 0, roundoff, 0.0)))
         pairs.append({"counts": [nu, nv], "holds": holds,
                       "max_deviation": None if dev is None else dev.tolist(),
                       "guard": guard})
