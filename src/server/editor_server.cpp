@@ -89,7 +89,7 @@ struct EditorServer::Impl {
   std::condition_variable run_ended;
   bool running = false;
   FileLock file_lock{config.input};  // a second editor of INPUT opens read-only
-  DragWatch watch{mutex, session, std::chrono::milliseconds(1500)};  // a drag whose page left
+  DragWatch watch{mutex, session, std::chrono::milliseconds(5000)};  // a drag whose page left
 
   explicit Impl(EditorConfig c)
       : config(std::move(c)), session(std::move(config.rows), config.options) {

@@ -163,9 +163,13 @@ TEST(StandardOutput, AFullDeviceIsNotSuccess) {
 
 // Out of memory (std::bad_alloc) is exit 10 with the command and input named, never exit 8:
 // the address space limited (ulimit -v) from where the program barely loads upwards until one
-// runs out, on two
-// rows of 30000 points whose fit needs some 100 MB.
-TEST(OutOfMemory, IsExitNineWithItsPlace) {
+// runs out, on two rows of 30000 points whose fit needs some 100 MB. Not in AddressSanitizer
+// builds: their shadow memory cannot be mapped under an address-space limit at all (the
+// release build's run of this test is the one that counts).
+TEST(OutOfMemory, IsExitTenWithItsPlace) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer cannot run under ulimit -v (its shadow memory)";
+#endif
   const std::string dir = temp_dir();
   std::string rows;
   for (int j = 0; j < 2; ++j) {
@@ -175,7 +179,7 @@ TEST(OutOfMemory, IsExitNineWithItsPlace) {
     rows += "\n";
   }
   write_file(dir + "/long.rows", rows);
-  int nines = 0;
+  int tens = 0;
   for (int mb = 60; mb <= 180; mb += 30) {
     SCOPED_TRACE(std::to_string(mb) + " MB");
     const int code = shell("cd " + q(dir) + " && ulimit -v " + std::to_string(mb * 1024) + " && " +
@@ -184,14 +188,14 @@ TEST(OutOfMemory, IsExitNineWithItsPlace) {
     if (code == 127) continue;  // the loader could not map the libraries: sfit never ran
     EXPECT_TRUE(code == 0 || code == 10) << code << ": " << err;
     if (code != 10) continue;
-    ++nines;  // one is enough: the limits above it only cost a whole fit each
+    ++tens;  // one is enough: the limits above it only cost a whole fit each
     EXPECT_EQ(err,
               "sfit: error: fit long.rows: out of memory: the input or the options need more "
               "memory than this process can have\n");
     EXPECT_FALSE(fs::exists(dir + "/out.json"));
     break;
   }
-  EXPECT_GT(nines, 0) << "no limit made the fit run out of memory";
+  EXPECT_GT(tens, 0) << "no limit made the fit run out of memory";
 }
 
 }  // namespace
