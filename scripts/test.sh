@@ -5,8 +5,8 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/install-deps.sh
 jobs=$(nproc)
-# ccache where it is installed (not a dependency: a developer's rebuilds, and the stages after
-# this one, compile the same objects again).
+# ccache (scripts/deps/robustness.txt): a developer's rebuilds, and the stages after this one,
+# compile the same objects again.
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSFIT_BUILD_TESTS=ON -DSFIT_BUILD_BENCH=ON \

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # CI stage: build the libFuzzer targets (preset 'fuzz': clang, ASan + UBSan) and run each for
-# FUZZ_SECONDS (default 60) on corpora seeded from examples/, tests/bad_input/ and STEP/IGES
+# FUZZ_SECONDS (default 40) on corpora seeded from examples/, tests/bad_input/ and STEP/IGES
 # section files written by make_section_seeds. Prints one summary line per target; fails if
 # any target finds a crash, a hang (a unit over 10 s), a leak or a sanitizer report.
 # Crashing inputs are kept in
 # build-fuzz/artifacts/. Environment: FUZZ_SECONDS, FUZZ_WORK (default build-fuzz/run).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
-seconds="${FUZZ_SECONDS:-60}"
+seconds="${FUZZ_SECONDS:-40}"
 work="${FUZZ_WORK:-build-fuzz/run}"
 start=$(date +%s)
 

@@ -94,13 +94,20 @@ TEST(Extremes, DegreeTwentyInBothDirections) {
 }
 
 TEST(Extremes, OneRowOfAMillionPoints) {
-  const Rows rows = sample_rows(wave, {1000000, 40, 1000});
+#if defined(__SANITIZE_ADDRESS__)
+  // The same paths at a fifth of the size: AddressSanitizer runs this case 7x slower (164 s
+  // on 2 cores), the release suite runs it at full size.
+  const int n = 200000;
+#else
+  const int n = 1000000;
+#endif
+  const Rows rows = sample_rows(wave, {n, 40, 1000});
   FitOptions o;
   o.tolerance = relative_tolerance(rows, 1e-4);
   const FitResult r = fit_surface(rows, o);
-  expect_sound(r, "10^6 points in one row");
-  EXPECT_EQ(r.report.points, 1001040u);
-  EXPECT_EQ(r.u.size(), 1001040u);
+  expect_sound(r, "a row of 10^6 points (2 10^5 under AddressSanitizer)");
+  EXPECT_EQ(r.report.points, static_cast<std::size_t>(n) + 1040u);
+  EXPECT_EQ(r.u.size(), static_cast<std::size_t>(n) + 1040u);
 }
 
 TEST(Extremes, HundredThousandRowsOfThreePoints) {
