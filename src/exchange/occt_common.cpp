@@ -6,7 +6,9 @@
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <cctype>
 #include <cmath>
+#include <utility>
 
 namespace sfit::exchange::detail {
 
@@ -60,6 +62,24 @@ const Unit* unit_named(const std::string& ours) {
 const Unit* unit_of_size(double mm) {
   for (const Unit& u : kUnits)
     if (std::abs(mm - u.mm) <= 1e-9 * u.mm) return &u;
+  return nullptr;
+}
+
+const Unit* step_unit(std::string name) {
+  for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  static const std::pair<const char*, const char*> names[] = {
+      {"MILLIMETRE", "mm"}, {"CENTIMETRE", "cm"}, {"KILOMETRE", "km"}, {"MICROMETRE", "um"},
+      {"METRE", "m"},       {"INCH", "in"},       {"FOOT", "ft"},      {"MILE", "mi"}};
+  for (const auto& [occt, ours] : names)
+    if (name.find(occt) != std::string::npos) return unit_named(ours);
+  return nullptr;
+}
+
+const Unit* iges_unit(int flag) {
+  static const std::pair<int, const char*> flags[] = {{1, "in"}, {2, "mm"}, {4, "ft"}, {5, "mi"},
+                                                      {6, "m"},  {7, "km"}, {9, "um"}, {10, "cm"}};
+  for (const auto& [iges, ours] : flags)
+    if (flag == iges) return unit_named(ours);
   return nullptr;
 }
 

@@ -35,6 +35,11 @@ inline constexpr std::array<Unit, 8> kUnits{{{"mm", "MM", 1.0},
 const Unit* unit_named(const std::string& ours);
 /// The unit of a size in millimetres (1000: "m"), within 1e-9; nullptr if none.
 const Unit* unit_of_size(double mm);
+/// The unit of a STEP file from the length unit names OCCT reads (MILLIMETRE, METRE, INCH,
+/// ...); nullptr if none of ours.
+const Unit* step_unit(std::string name);
+/// The unit of an IGES file from its global section's unit flag; nullptr if none of ours.
+const Unit* iges_unit(int flag);
 
 /// OCCT keeps the session's length unit in globals (Interface_Static and UnitsMethods) and
 /// scales shapes between it and a file's unit. Sets the session unit to `u` for one transfer

@@ -49,26 +49,6 @@ std::string g(double x) {
   return b;
 }
 
-// The unit of a STEP file from the names OCCT gives (MILLIMETRE, METRE, INCH, ...).
-const Unit* step_unit(std::string name) {
-  for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  static const std::pair<const char*, const char*> names[] = {
-      {"MILLIMETRE", "mm"}, {"CENTIMETRE", "cm"}, {"KILOMETRE", "km"}, {"MICROMETRE", "um"},
-      {"METRE", "m"},       {"INCH", "in"},       {"FOOT", "ft"},      {"MILE", "mi"}};
-  for (const auto& [occt, ours] : names)
-    if (name.find(occt) != std::string::npos) return unit_named(ours);
-  return nullptr;
-}
-
-// The unit of an IGES file from its global section's unit flag.
-const Unit* iges_unit(int flag) {
-  static const std::pair<int, const char*> flags[] = {{1, "in"}, {2, "mm"}, {4, "ft"}, {5, "mi"},
-                                                      {6, "m"},  {7, "km"}, {9, "um"}, {10, "cm"}};
-  for (const auto& [iges, ours] : flags)
-    if (flag == iges) return unit_named(ours);
-  return nullptr;
-}
-
 // IGES curve entity types (the ones sfit can take as a section).
 bool is_iges_curve(int type) {
   return type == 100 || type == 102 || type == 104 || type == 106 || type == 110 || type == 112 ||

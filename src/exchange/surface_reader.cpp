@@ -27,30 +27,14 @@ namespace sfit::exchange {
 
 namespace {
 
+using detail::iges_unit;
 using detail::SessionUnit;
+using detail::step_unit;
 using detail::Unit;
 using detail::unit_named;
 
 [[noreturn]] void fail(ErrorCode code, const std::string& path, const std::string& msg) {
   throw Error(code, msg, Place{.file = path});
-}
-
-const Unit* step_unit(std::string name) {
-  for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  static const std::pair<const char*, const char*> names[] = {
-      {"MILLIMETRE", "mm"}, {"CENTIMETRE", "cm"}, {"KILOMETRE", "km"}, {"MICROMETRE", "um"},
-      {"METRE", "m"},       {"INCH", "in"},       {"FOOT", "ft"},      {"MILE", "mi"}};
-  for (const auto& [occt, ours] : names)
-    if (name.find(occt) != std::string::npos) return unit_named(ours);
-  return nullptr;
-}
-
-const Unit* iges_unit(int flag) {
-  static const std::pair<int, const char*> flags[] = {{1, "in"}, {2, "mm"}, {4, "ft"}, {5, "mi"},
-                                                      {6, "m"},  {7, "km"}, {9, "um"}, {10, "cm"}};
-  for (const auto& [iges, ours] : flags)
-    if (flag == iges) return unit_named(ours);
-  return nullptr;
 }
 
 // The distinct-point count of one direction, after checking its knots are uniform in sfit's
