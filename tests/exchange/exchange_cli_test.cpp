@@ -14,18 +14,15 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::run_cli;
-
-std::string q(const std::string& s) {
-  return "'" + s + "'";
-}
+using test::shell_quoted;
 
 TEST(ExchangeCli, OneFitWritesEveryFormat) {
   const std::string dir = test::temp_dir();
   std::string outs;
   for (const char* e : {"json", "step", "stp", "igs", "iges", "obj", "stl", "ply", "vtk", "vts"})
-    outs += " -o " + q(dir + "/wing." + e);
-  const auto r =
-      run_cli("fit " + q(test::example("d150_wing.rows")) + " --closed u --fields" + outs);
+    outs += " -o " + shell_quoted(dir + "/wing." + e);
+  const auto r = run_cli("fit " + shell_quoted(test::example("d150_wing.rows")) +
+                         " --closed u --fields" + outs);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* e : {"json", "step", "stp", "igs", "iges", "obj", "stl", "ply", "vtk", "vts"}) {
     EXPECT_GT(fs::file_size(dir + "/wing." + e), 1000u) << e;
@@ -42,8 +39,9 @@ TEST(ExchangeCli, OneFitWritesEveryFormat) {
   EXPECT_NE(obj.find("\nvn "), std::string::npos);
   EXPECT_NE(obj.find("\nf 1//1 "), std::string::npos);
   EXPECT_EQ(obj.find("cstype"), std::string::npos);
-  const auto m = run_cli("fit " + q(test::example("d150_wing.rows")) +
-                         " --closed u --method sfit01 --obj-freeform -o " + q(dir + "/free.obj"));
+  const auto m =
+      run_cli("fit " + shell_quoted(test::example("d150_wing.rows")) +
+              " --closed u --method sfit01 --obj-freeform -o " + shell_quoted(dir + "/free.obj"));
   ASSERT_EQ(m.exit_code, 0) << m.err;
   EXPECT_NE(test::read_file(dir + "/free.obj").find("cstype bspline"), std::string::npos);
   EXPECT_NE(m.err.find("(free-form B-spline surface, 14 x 4 control points"), std::string::npos)
@@ -64,9 +62,10 @@ TEST(ExchangeCli, ConvertReexportsAndJsonReloadsBitForBit) {
     EXPECT_EQ(back.periodic_u, c->fit.surface.periodic_u);
     EXPECT_EQ(back.periodic_v, c->fit.surface.periodic_v);
     // convert: JSON -> JSON is the same surface; JSON -> STEP/IGES/STL works.
-    const auto r = run_cli("convert " + q(dir + "/s.json") + " -o " + q(dir + "/t.json") + " -o " +
-                           q(dir + "/t.step") + " -o " + q(dir + "/t.igs") + " -o " +
-                           q(dir + "/t.stl") + " --units m");
+    const auto r = run_cli("convert " + shell_quoted(dir + "/s.json") + " -o " +
+                           shell_quoted(dir + "/t.json") + " -o " + shell_quoted(dir + "/t.step") +
+                           " -o " + shell_quoted(dir + "/t.igs") + " -o " +
+                           shell_quoted(dir + "/t.stl") + " --units m");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Surface again = io::read_surface_json(dir + "/t.json");
     EXPECT_EQ(
@@ -88,12 +87,12 @@ TEST(ExchangeCli, FitsCsvAndStepSectionInputs) {
       csv += buf;
     }
   test::write_file(dir + "/ship.csv", csv);
-  auto r = run_cli("fit " + q(dir + "/ship.csv") + " -o " + q(dir + "/a.json") + " -o " +
-                   q(dir + "/a.step"));
+  auto r = run_cli("fit " + shell_quoted(dir + "/ship.csv") + " -o " +
+                   shell_quoted(dir + "/a.json") + " -o " + shell_quoted(dir + "/a.step"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("11 rows, 90 points"), std::string::npos) << r.err;
   // Our own STEP output holds a face, not sections: a clear data error.
-  r = run_cli("fit " + q(dir + "/a.step") + " -o " + q(dir + "/b.json"));
+  r = run_cli("fit " + shell_quoted(dir + "/a.step") + " -o " + shell_quoted(dir + "/b.json"));
   EXPECT_EQ(r.exit_code, 5) << r.err;
   EXPECT_NE(r.err.find("no section curves"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir + "/b.json"));
@@ -101,32 +100,33 @@ TEST(ExchangeCli, FitsCsvAndStepSectionInputs) {
 
 TEST(ExchangeCli, ErrorsExitWithTheirCodeAndWriteNothing) {
   const std::string dir = test::temp_dir();
-  const std::string in = q(test::example("ship_px121_stations.rows"));
-  auto r = run_cli("fit " + in + " -o " + q(dir + "/x.dxf"));
+  const std::string in = shell_quoted(test::example("ship_px121_stations.rows"));
+  auto r = run_cli("fit " + in + " -o " + shell_quoted(dir + "/x.dxf"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("unknown output extension 'dxf'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(".step"), std::string::npos) << "the known extensions are listed";
-  r = run_cli("fit " + in + " --units parsec -o " + q(dir + "/x.step"));
+  r = run_cli("fit " + in + " --units parsec -o " + shell_quoted(dir + "/x.step"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--units: unknown length unit 'parsec'"), std::string::npos) << r.err;
-  r = run_cli("fit " + in + " --mesh-density 1 -o " + q(dir + "/x.stl"));
+  r = run_cli("fit " + in + " --mesh-density 1 -o " + shell_quoted(dir + "/x.stl"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--mesh-density"), std::string::npos) << r.err;
-  r = run_cli("fit " + in + " -o " + q(dir + "/no/such/x.igs"));
+  r = run_cli("fit " + in + " -o " + shell_quoted(dir + "/no/such/x.igs"));
   EXPECT_EQ(r.exit_code, 6);
   test::write_file(dir + "/bad.csv", "x,y,z\n1,2,3\n1,2,oops\n");
-  r = run_cli("fit " + q(dir + "/bad.csv") + " -o " + q(dir + "/x.json"));
+  r = run_cli("fit " + shell_quoted(dir + "/bad.csv") + " -o " + shell_quoted(dir + "/x.json"));
   EXPECT_EQ(r.exit_code, 4);
   EXPECT_NE(r.err.find(dir + "/bad.csv:3:5: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("'oops' is not a number"), std::string::npos) << r.err;
   test::write_file(dir + "/bad.step", "ISO-10303-21;\nnonsense\n");
-  r = run_cli("fit " + q(dir + "/bad.step") + " -o " + q(dir + "/x.json"));
+  r = run_cli("fit " + shell_quoted(dir + "/bad.step") + " -o " + shell_quoted(dir + "/x.json"));
   EXPECT_EQ(r.exit_code, 4) << r.err;
-  r = run_cli("fit " + q(dir + "/missing.iges") + " -o " + q(dir + "/x.json"));
+  r = run_cli("fit " + shell_quoted(dir + "/missing.iges") + " -o " +
+              shell_quoted(dir + "/x.json"));
   EXPECT_EQ(r.exit_code, 3) << r.err;
   // An existing output survives a failed run.
   test::write_file(dir + "/keep.stl", "old");
-  r = run_cli("fit " + in + " --mesh-density 0,5 -o " + q(dir + "/keep.stl"));
+  r = run_cli("fit " + in + " --mesh-density 0,5 -o " + shell_quoted(dir + "/keep.stl"));
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(test::read_file(dir + "/keep.stl"), "old");
   for (const auto& f : fs::directory_iterator(dir)) {

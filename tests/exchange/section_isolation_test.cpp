@@ -32,10 +32,6 @@ void write_iges(const std::string& path, const std::vector<Handle(Geom_Curve)>& 
   ASSERT_TRUE(test::write_section_iges(path, curves, unit)) << path;
 }
 
-std::string q(const std::string& s) {
-  return "'" + s + "'";
-}
-
 std::string last_line(const std::string& text) {
   std::string t = text;
   while (!t.empty() && t.back() == '\n') t.pop_back();
@@ -55,7 +51,8 @@ std::string edit(const std::string& text, const std::string& pattern, const std:
 int fit_expecting_a_clean_answer(const std::string& file, std::string* error = nullptr) {
   const std::string out = fs::path(file).parent_path().string() + "/out.json";
   fs::remove(out);
-  const test::Run r = test::run_cli("fit " + q(file) + " -q -o " + q(out));
+  const test::Run r =
+      test::run_cli("fit " + test::shell_quoted(file) + " -q -o " + test::shell_quoted(out));
   const std::string line = last_line(r.err);
   EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 3 || r.exit_code == 4 || r.exit_code == 5 ||
               r.exit_code == 7)
@@ -170,8 +167,8 @@ TEST(SectionUnits, LengthsAreReadInTheFilesOwnUnit) {
     EXPECT_NEAR(largest, metre ? 24.0 : 24000.0, metre ? 1e-6 : 1e-3);  // the third row at 24 m
   }
   // The CLI says the unit and states it in a STEP output (no --units needed).
-  const test::Run r =
-      test::run_cli("fit " + q(dir + "/metre.step") + " -o " + q(dir + "/surface.step"));
+  const test::Run r = test::run_cli("fit " + test::shell_quoted(dir + "/metre.step") + " -o " +
+                                    test::shell_quoted(dir + "/surface.step"));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("sfit: " + dir +
                        "/metre.step: lengths in m (the file's own unit, not "
@@ -187,7 +184,8 @@ TEST(SectionClosed, ClosedCurvesAreFittedClosedUnlessToldOtherwise) {
   const SectionsFile s = read_sections(dir + "/rings.igs");
   ASSERT_EQ(s.closed.size(), 3u);
   for (bool c : s.closed) EXPECT_TRUE(c);
-  test::Run r = test::run_cli("fit " + q(dir + "/rings.igs") + " -o " + q(dir + "/a.json"));
+  test::Run r = test::run_cli("fit " + test::shell_quoted(dir + "/rings.igs") + " -o " +
+                              test::shell_quoted(dir + "/a.json"));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("note: every section curve in " + dir +
                        "/rings.igs is closed: fitting closed rows (--closed u; give --closed none "
@@ -195,7 +193,8 @@ TEST(SectionClosed, ClosedCurvesAreFittedClosedUnlessToldOtherwise) {
             std::string::npos)
       << r.err;
   EXPECT_NE(test::read_file(dir + "/a.json").find("\"periodic\":[true,false]"), std::string::npos);
-  r = test::run_cli("fit " + q(dir + "/rings.igs") + " --closed none -o " + q(dir + "/b.json"));
+  r = test::run_cli("fit " + test::shell_quoted(dir + "/rings.igs") + " --closed none -o " +
+                    test::shell_quoted(dir + "/b.json"));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("warning: every section curve in " + dir +
                        "/rings.igs is closed, but they are fitted open"),

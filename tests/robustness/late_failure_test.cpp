@@ -24,19 +24,11 @@ namespace fs = std::filesystem;
 namespace sfit::test {
 namespace {
 
-std::string q(const std::string& s) {
-  return "'" + s + "'";
-}
-
 std::map<std::string, std::string> contents(const std::string& dir) {
   std::map<std::string, std::string> m;
   for (const auto& e : fs::directory_iterator(dir))
     if (e.is_regular_file()) m[e.path().filename().string()] = read_file(e.path().string());
   return m;
-}
-
-std::string good_rows() {
-  return std::string(SFIT_TESTS_DIR) + "/bad_input/good.rows";
 }
 
 int shell(const std::string& cmd) {
@@ -125,9 +117,10 @@ TEST(OutputPlan, SomeoneElsesFileInAStickyFolderIsRefusedFirst) {
   ASSERT_EQ(::chmod(dir.c_str(), 0755), 0);
   write_file(sticky + "/taken.json", "root's file");
   const std::string err = dir + "/err";
-  const int code = shell("setpriv --reuid=65534 --regid=65534 --clear-groups " + q(SFIT_CLI) +
-                         " fit " + q(good_rows()) + " -o " + q(sticky + "/new.json") + " -o " +
-                         q(sticky + "/taken.json") + " 2>" + q(err));
+  const int code =
+      shell("setpriv --reuid=65534 --regid=65534 --clear-groups " + shell_quoted(SFIT_CLI) +
+            " fit " + shell_quoted(good_rows()) + " -o " + shell_quoted(sticky + "/new.json") +
+            " -o " + shell_quoted(sticky + "/taken.json") + " 2>" + shell_quoted(err));
   EXPECT_EQ(code, 6);
   EXPECT_EQ(read_file(err), "sfit: error: " + sticky +
                                 "/taken.json: cannot write output: it belongs to another user "
@@ -139,8 +132,9 @@ TEST(OutputPlan, SomeoneElsesFileInAStickyFolderIsRefusedFirst) {
 TEST(StandardOutput, AClosedPipeIsAWriteErrorWithItsLine) {
   const std::string dir = temp_dir();
   // The reader exits at once; sfit writes the JSON after the fit, into the closed pipe.
-  const int code = shell("( " + q(SFIT_CLI) + " fit " + q(good_rows()) + " -o - 2>" +
-                         q(dir + "/err") + "; echo $? >" + q(dir + "/code") + " ) | true");
+  const int code =
+      shell("( " + shell_quoted(SFIT_CLI) + " fit " + shell_quoted(good_rows()) + " -o - 2>" +
+            shell_quoted(dir + "/err") + "; echo $? >" + shell_quoted(dir + "/code") + " ) | true");
   EXPECT_EQ(code, 0);
   EXPECT_EQ(read_file(dir + "/code"), "6\n") << "not killed by SIGPIPE (141)";
   const std::string err = read_file(dir + "/err");
@@ -154,7 +148,8 @@ TEST(StandardOutput, AFullDeviceIsNotSuccess) {
   const std::string dir = temp_dir();
   for (const std::string args : {"formats", "--help", "--version", "fit --help"}) {
     SCOPED_TRACE(args);
-    const int code = shell(q(SFIT_CLI) + " " + args + " >/dev/full 2>" + q(dir + "/err"));
+    const int code =
+        shell(shell_quoted(SFIT_CLI) + " " + args + " >/dev/full 2>" + shell_quoted(dir + "/err"));
     EXPECT_EQ(code, 6);
     EXPECT_EQ(read_file(dir + "/err"),
               "sfit: error: standard output: cannot write output: No space left on device\n");
@@ -182,8 +177,9 @@ TEST(OutOfMemory, IsExitTenWithItsPlace) {
   int tens = 0;
   for (int mb = 60; mb <= 180; mb += 30) {
     SCOPED_TRACE(std::to_string(mb) + " MB");
-    const int code = shell("cd " + q(dir) + " && ulimit -v " + std::to_string(mb * 1024) + " && " +
-                           q(SFIT_CLI) + " fit long.rows -o out.json -q 2>err");
+    const int code =
+        shell("cd " + shell_quoted(dir) + " && ulimit -v " + std::to_string(mb * 1024) + " && " +
+              shell_quoted(SFIT_CLI) + " fit long.rows -o out.json -q 2>err");
     const std::string err = read_file(dir + "/err");
     if (code == 127) continue;  // the loader could not map the libraries: sfit never ran
     EXPECT_TRUE(code == 0 || code == 10) << code << ": " << err;

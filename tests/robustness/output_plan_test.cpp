@@ -25,19 +25,11 @@ namespace fs = std::filesystem;
 namespace sfit::test {
 namespace {
 
-std::string q(const std::string& s) {
-  return "'" + s + "'";
-}
-
 std::map<std::string, std::string> contents(const std::string& dir) {
   std::map<std::string, std::string> m;
   for (const auto& e : fs::recursive_directory_iterator(dir))
     if (e.is_regular_file() && !e.is_symlink()) m[e.path().string()] = read_file(e.path().string());
   return m;
-}
-
-std::string good_rows() {
-  return std::string(SFIT_TESTS_DIR) + "/bad_input/good.rows";
 }
 
 TEST(OutputBatch, AllOrNothing) {
@@ -73,19 +65,21 @@ TEST(OutputPlan, NoSpellingOrLinkOfTheInputIsWritten) {
   };
   const std::string in = dir + "/in.rows";
   const std::vector<Case> cases = {
-      {"fit " + q(in) + " -o " + q(dir + "/hard.json"), "-o: '" + dir +
-                                                            "/hard.json' is the input file '" + in +
-                                                            "': sfit never writes over an input"},
-      {"fit " + q(in) + " -o " + q(dir + "/soft.json"), "-o: '" + dir +
-                                                            "/soft.json' is the input file '" + in +
-                                                            "': sfit never writes over an input"},
-      {"fit " + q(in) + " -o " + q(dir + "/a.json") + " --report " + q(dir + "/sub/../in.rows"),
+      {"fit " + shell_quoted(in) + " -o " + shell_quoted(dir + "/hard.json"),
+       "-o: '" + dir + "/hard.json' is the input file '" + in +
+           "': sfit never writes over an input"},
+      {"fit " + shell_quoted(in) + " -o " + shell_quoted(dir + "/soft.json"),
+       "-o: '" + dir + "/soft.json' is the input file '" + in +
+           "': sfit never writes over an input"},
+      {"fit " + shell_quoted(in) + " -o " + shell_quoted(dir + "/a.json") + " --report " +
+           shell_quoted(dir + "/sub/../in.rows"),
        "--report: '" + dir + "/sub/../in.rows' is the input file '" + in +
            "': sfit never writes over an input"},
-      {"fit " + q(in) + " -o " + q(dir + "/a.json") + " --report " + q(dir + "/sub/../a.json"),
+      {"fit " + shell_quoted(in) + " -o " + shell_quoted(dir + "/a.json") + " --report " +
+           shell_quoted(dir + "/sub/../a.json"),
        "--report: '" + dir + "/sub/../a.json' is already the output of -o (as '" + dir +
            "/a.json'): give each output once"},
-      {"convert " + q(dir + "/hard.json") + " -o " + q(dir + "/soft.json"),
+      {"convert " + shell_quoted(dir + "/hard.json") + " -o " + shell_quoted(dir + "/soft.json"),
        "-o: '" + dir + "/soft.json' is the input file '" + dir +
            "/hard.json': sfit never writes over an input"},
   };
@@ -97,8 +91,10 @@ TEST(OutputPlan, NoSpellingOrLinkOfTheInputIsWritten) {
   }
   // Standard input redirected from a file protects that file too.
   const std::string err = dir + "/../stdin-case.err";
-  const int status = std::system(
-      (q(SFIT_CLI) + " fit - -o " + q(dir + "/hard.json") + " <" + q(in) + " 2>" + q(err)).c_str());
+  const int status =
+      std::system((shell_quoted(SFIT_CLI) + " fit - -o " + shell_quoted(dir + "/hard.json") + " <" +
+                   shell_quoted(in) + " 2>" + shell_quoted(err))
+                      .c_str());
   EXPECT_EQ(WEXITSTATUS(status), 2);
   EXPECT_EQ(read_file(err),
             "sfit: error: -o: '" + dir +
@@ -112,7 +108,8 @@ TEST(OutputPlan, ADeviceOrPipeIsNeverReplaced) {
   const std::string dir = temp_dir();
   const std::string fifo = dir + "/pipe.json";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  const sfit::test::Run r = run_cli("fit " + q(good_rows()) + " --report " + q(fifo));
+  const sfit::test::Run r =
+      run_cli("fit " + shell_quoted(good_rows()) + " --report " + shell_quoted(fifo));
   EXPECT_EQ(r.exit_code, 6) << r.err;
   EXPECT_EQ(r.err, "sfit: error: " + fifo +
                        ": cannot write output: it is not a regular file (a device, pipe or "
@@ -131,9 +128,9 @@ TEST(OutputPlan, ALateRefusalLeavesEveryOldFileAndNoNewOne) {
   const auto before = contents(dir);
   // The STL is refused only once the surface exists (float32 overflow): after the JSON and
   // the report were written to their temporaries.
-  const sfit::test::Run r =
-      run_cli("fit " + q(dir + "/in.rows") + " -o " + q(dir + "/out.json") + " --report " +
-              q(dir + "/report.json") + " -o " + q(dir + "/mesh.stl"));
+  const sfit::test::Run r = run_cli(
+      "fit " + shell_quoted(dir + "/in.rows") + " -o " + shell_quoted(dir + "/out.json") +
+      " --report " + shell_quoted(dir + "/report.json") + " -o " + shell_quoted(dir + "/mesh.stl"));
   EXPECT_EQ(r.exit_code, 6) << r.err;
   EXPECT_EQ(r.err.find("sfit: wrote"), std::string::npos) << r.err;
   EXPECT_EQ(contents(dir), before);
@@ -152,8 +149,9 @@ TEST(OutputPlan, AFullDiskOnTheSecondOutputLeavesEveryOldFile) {
   // The first output (a few KB) fits in the folder beside; the second, a dense mesh, fills
   // the 16 KiB tmpfs.
   const sfit::test::Run r =
-      run_cli("fit " + q(good_rows()) + " -o " + q(dir + "/old.json") + " -o " +
-              q(full + "/old.json") + " -o " + q(full + "/mesh.ply") + " --mesh-density 400");
+      run_cli("fit " + shell_quoted(good_rows()) + " -o " + shell_quoted(dir + "/old.json") +
+              " -o " + shell_quoted(full + "/old.json") + " -o " +
+              shell_quoted(full + "/mesh.ply") + " --mesh-density 400");
   EXPECT_EQ(r.exit_code, 6) << r.err;
   EXPECT_NE(r.err.find("sfit: error: " + full + "/mesh.ply: cannot write output: "),
             std::string::npos)
@@ -164,8 +162,8 @@ TEST(OutputPlan, AFullDiskOnTheSecondOutputLeavesEveryOldFile) {
 
 TEST(OutputPlan, DashWritesTheJsonToStandardOutput) {
   const std::string dir = temp_dir();
-  const sfit::test::Run r =
-      run_cli("fit " + q(good_rows()) + " -o - --report " + q(dir + "/report.json"));
+  const sfit::test::Run r = run_cli("fit " + shell_quoted(good_rows()) + " -o - --report " +
+                                    shell_quoted(dir + "/report.json"));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   write_file(dir + "/stdout.json", r.out);
   const Surface s = io::read_surface_json(dir + "/stdout.json");
@@ -174,7 +172,7 @@ TEST(OutputPlan, DashWritesTheJsonToStandardOutput) {
   EXPECT_NE(r.err.find("sfit: wrote the JSON to standard output\n"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("sfit: wrote " + dir + "/report.json\n"), std::string::npos) << r.err;
   // No output at all: the summary alone.
-  const sfit::test::Run summary = run_cli("fit " + q(good_rows()));
+  const sfit::test::Run summary = run_cli("fit " + shell_quoted(good_rows()));
   EXPECT_EQ(summary.exit_code, 0) << summary.err;
   EXPECT_TRUE(summary.out.empty());
   EXPECT_NE(summary.err.find("every point within tolerance: yes"), std::string::npos);

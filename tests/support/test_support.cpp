@@ -142,4 +142,12 @@ void expect_same_surface(const FitResult& a, const FitResult& b) {
   EXPECT_EQ(a.v, b.v);
 }
 
+std::string shell_quoted(const std::string& s) {
+  return "'" + s + "'";
+}
+
+std::string good_rows() {
+  return std::string(SFIT_TESTS_DIR) + "/bad_input/good.rows";
+}
+
 }  // namespace sfit::test

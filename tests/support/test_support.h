@@ -34,6 +34,10 @@ struct Run {
 };
 /// Runs the CLI with `args` (shell-quoted here), optional stdin text.
 Run run_cli(const std::string& args, const std::string& stdin_text = "");
+/// `s` in single quotes, for run_cli() (paths without a quote of their own).
+std::string shell_quoted(const std::string& s);
+/// tests/bad_input/good.rows: a small valid input.
+std::string good_rows();
 /// A fresh empty temporary folder for this test.
 std::string temp_dir();
 std::string read_file(const std::string& path);
