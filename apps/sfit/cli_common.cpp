@@ -253,4 +253,22 @@ void note_closed_rows(const Input& in, bool& closed_u, bool closed_given, std::s
       "(first point not repeated), or --closed none to keep them open");
 }
 
+void add_output_shape_options(CLI::App* c, OutputShapeArgs& a) {
+  add_table_flag(c, "mesh", a.mesh);
+  add_table_flag(c, "obj_freeform", a.obj_freeform);
+  c->add_option("--mesh-density", a.mesh_density, option_help("mesh_density"));
+  add_table_option(c, "normals", a.normals);
+  add_table_flag(c, "fields", a.fields);
+  add_table_option(c, "units", a.units);
+}
+
+files::OutputContext output_context(const OutputShapeArgs& a, const Surface& surface,
+                                    const FitResult* fit, const Rows* rows,
+                                    const std::string& input, const std::string& units) {
+  files::OutputContext ctx{surface, fit, rows, input, a.mesh, a.mesh_density, a.fields, units};
+  ctx.obj_freeform = a.obj_freeform;
+  ctx.normals = a.normals;
+  return ctx;
+}
+
 }  // namespace sfit::cli

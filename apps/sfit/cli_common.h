@@ -60,6 +60,23 @@ struct CheckedFitOptions {
 /// throws Error(kUsage) naming the option.
 CheckedFitOptions check_fit_options(const FitOptionArgs& args);
 
+/// The options that shape the surface outputs, as 'fit' and 'convert' take them: flags, help
+/// and defaults from the option table, checks by the writers (docs/meshes.md).
+struct OutputShapeArgs {
+  bool mesh = false;
+  int mesh_density = 0;
+  bool fields = false;
+  bool obj_freeform = false;
+  std::string normals = "auto";
+  std::string units;  ///< as given; "" : the command's own default
+};
+/// Adds --mesh, --obj-freeform, --mesh-density, --normals, --fields and --units to `c`.
+void add_output_shape_options(CLI::App* c, OutputShapeArgs& a);
+/// The writers' context for `surface` with these options and the length unit `units`.
+files::OutputContext output_context(const OutputShapeArgs& a, const Surface& surface,
+                                    const FitResult* fit, const Rows* rows,
+                                    const std::string& input, const std::string& units);
+
 /// Parses "T" or "Tx,Ty,Tz" (each a finite number >= 0); throws Error(kUsage) naming `option`.
 Point parse_tolerance(const std::string& text, const std::string& option);
 

@@ -15,12 +15,7 @@ namespace {
 struct ConvertArgs {
   std::string input;
   std::vector<std::string> outputs;
-  bool mesh = false;
-  int mesh_density = 0;
-  bool fields = false;
-  std::string units = "mm";
-  bool obj_freeform = false;
-  std::string normals = "auto";
+  OutputShapeArgs shape{.units = "mm"};
   bool quiet = false;
 };
 
@@ -31,11 +26,9 @@ int run_convert(const ConvertArgs& a) {
   OutputPlan plan;
   plan.add_input(a.input);
   plan.add(a.outputs, "-o", OutputTarget::kSurface);
-  check_output_options(a.units, a.mesh_density, a.normals);
+  check_output_options(a.shape.units, a.shape.mesh_density, a.shape.normals);
   const Surface s = io::read_surface_json(a.input);
-  OutputContext ctx{s, nullptr, nullptr, a.input, a.mesh, a.mesh_density, a.fields, a.units};
-  ctx.obj_freeform = a.obj_freeform;
-  ctx.normals = a.normals;
+  const OutputContext ctx = output_context(a.shape, s, nullptr, nullptr, a.input, a.shape.units);
   plan.write_all([&](const PlannedOutput& out, std::string* text) {
     return write_output(out.path, ctx, text);
   });
@@ -49,13 +42,7 @@ void add_convert_command(CLI::App& app, Runner& run) {
   CLI::App* c = app.add_subcommand("convert", "re-export a saved surface (.json) to other formats");
   c->add_option("SURFACE", args->input, "surface file written by 'sfit fit' (.json)")->required();
   c->add_option("-o,--output", args->outputs, "output file(s); the extension picks the format");
-  // Mesh outputs; defaults and checks are the library's (docs/meshes.md).
-  add_table_flag(c, "mesh", args->mesh);
-  add_table_flag(c, "obj_freeform", args->obj_freeform);
-  c->add_option("--mesh-density", args->mesh_density, option_help("mesh_density"));
-  add_table_option(c, "normals", args->normals);
-  add_table_flag(c, "fields", args->fields);
-  add_table_option(c, "units", args->units);
+  add_output_shape_options(c, args->shape);  // --mesh ... --units (docs/meshes.md)
   c->add_flag("-q,--quiet", args->quiet, "print errors only");
   c->footer("Example:\n  sfit convert hull.json -o hull.step -o hull.stl");
   c->callback([args, &run] { run = [args] { return run_convert(*args); }; });

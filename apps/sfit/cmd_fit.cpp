@@ -32,12 +32,7 @@ struct FitArgs : FitOptionArgs {  // --degree, --tol, --closed, ... (cli_common.
   std::vector<std::string> outputs;
   std::string report;
   bool quiet = false;
-  bool mesh = false;
-  int mesh_density = 0;
-  bool fields = false;
-  std::string units;  // "": a STEP/IGES input's unit, else mm
-  bool obj_freeform = false;
-  std::string normals = "auto";
+  OutputShapeArgs shape;  // --mesh ... --units; units "": a STEP/IGES input's unit, else mm
 #ifdef SFIT_HAVE_RENDER
   std::vector<std::string> pngs;  // --png pictures
   PictureArgs picture;
@@ -72,7 +67,8 @@ int run_fit(const FitArgs& a) {
   plan.add_input(a.input);
   plan.add(a.outputs, "-o", OutputTarget::kSurface);
   if (!a.report.empty()) plan.add(a.report, "--report", OutputTarget::kReport);
-  check_output_options(a.units.empty() ? "mm" : a.units, a.mesh_density, a.normals);
+  check_output_options(a.shape.units.empty() ? "mm" : a.shape.units, a.shape.mesh_density,
+                       a.shape.normals);
 #ifdef SFIT_HAVE_RENDER
   plan.add(a.pngs, "--png", OutputTarget::kPicture);
   check_picture_outputs(a.pngs, a.picture, "--png");
@@ -82,7 +78,7 @@ int run_fit(const FitArgs& a) {
   const BoundingBox box = bounding_box(in.rows);
   o.tolerance = checked.tolerance(in.rows);
   note_closed_rows(in, o.closed_u, !a.closed().empty());
-  const std::string units = units_of_outputs(a.units, in);
+  const std::string units = units_of_outputs(a.shape.units, in);
 
   std::size_t lo = SIZE_MAX, hi = 0;
   for (std::size_t j = 0; j < in.rows.size(); ++j) {
@@ -200,9 +196,7 @@ int run_fit(const FitArgs& a) {
                     r.worst_row, r.worst_index, vec(r.worst_deviation)),
         Place{.file = in.name},
         {r.worst_deviation.x(), r.worst_deviation.y(), r.worst_deviation.z()});
-  OutputContext ctx{fit.surface, &fit, &in.rows, in.name, a.mesh, a.mesh_density, a.fields, units};
-  ctx.obj_freeform = a.obj_freeform;
-  ctx.normals = a.normals;
+  const OutputContext ctx = output_context(a.shape, fit.surface, &fit, &in.rows, in.name, units);
   bool pictures_done = false;
   try {
     plan.write_all([&](const PlannedOutput& out, std::string* text) {
@@ -254,15 +248,9 @@ void add_fit_command(CLI::App& app, Runner& run) {
                     "the summary only");
   c->add_option("--report", args->report, "write the fit report as JSON ('-': standard output)");
   add_fit_option_flags(c, *args);
-  // Mesh and CAD outputs (.obj .stl .ply .vtk .vts .step .igs): flags and help from the
-  // option table (sfit/options.h), checks by the writers (docs/meshes.md).
-  add_table_flag(c, "mesh", args->mesh);
-  add_table_flag(c, "obj_freeform", args->obj_freeform);
-  c->add_option("--mesh-density", args->mesh_density, option_help("mesh_density"));
-  add_table_option(c, "normals", args->normals);
-  add_table_flag(c, "fields", args->fields);
-  // The default "" is the input's own unit, else mm (units_of_outputs()).
-  add_table_option(c, "units", args->units);
+  // Mesh and CAD outputs (.obj .stl .ply .vtk .vts .step .igs); the default units "" is the
+  // input's own unit, else mm (units_of_outputs()).
+  add_output_shape_options(c, args->shape);
 #ifdef SFIT_HAVE_RENDER
   CLI::Option* png = c->add_option("--png", args->pngs,
                                    "draw the fitted surface to a PNG picture (repeat for several; "
