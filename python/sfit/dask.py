@@ -84,20 +84,47 @@ def _file_shape(path):
     return a.shape[0], (int(a[-1, 3]) + 1 if len(a) else 0)
 
 
+def _is_las(path):
+    return str(path).lower().endswith(".las")
+
+
+# A LAS file is read in pieces of this many points (128 MB as the (n, 4) float64 chunk).
+LAS_CHUNK_POINTS = 4 << 20
+
+
 def points_from_files(paths):
-    """A dask array (n, 4) of the points of `paths` (.rows, .srows, .npy), one chunk per file,
-    each read by the worker that computes it; the rows of a file follow those of the file
-    before. One pass reads every file once on the workers to learn its size."""
+    """A dask array (n, 4) of the points of `paths` (.rows, .srows, .npy, .las), each read by
+    the worker that computes it: one chunk per file, a LAS file in pieces of whole scan lines
+    of at most LAS_CHUNK_POINTS points; the rows of a file follow those of the file before (a
+    LAS file's rows are its scan lines, all turned to run one way: sfit/_las.py). One pass
+    reads every file once on the workers to learn its size (of a LAS file, the flags of its
+    points)."""
     import dask
     import dask.array as da
+
+    from . import _las
 
     paths = [str(p) for p in paths]
     if not paths:
         raise _error("usage", "no files given", option="points")
-    shapes = dask.compute(*[dask.delayed(_file_shape, pure=True)(p) for p in paths])
-    offsets = np.concatenate([[0], np.cumsum([s[1] for s in shapes])])
-    blocks = [da.from_delayed(dask.delayed(_read_file, pure=True)(p, int(o)), shape=(s[0], 4),
-                              dtype=float) for p, o, s in zip(paths, offsets, shapes)]
+    shapes = dask.compute(*[
+        dask.delayed(_las.scan_lines, pure=True)(p, LAS_CHUNK_POINTS) if _is_las(p)
+        else dask.delayed(_file_shape, pure=True)(p) for p in paths])
+    blocks = []
+    rows_before = 0
+    for p, shape in zip(paths, shapes):
+        if not _is_las(p):
+            blocks.append(da.from_delayed(dask.delayed(_read_file, pure=True)(p, rows_before),
+                                          shape=(shape[0], 4), dtype=float))
+            rows_before += shape[1]
+            continue
+        reference, pieces = shape
+        for first, count, lines in pieces:
+            blocks.append(da.from_delayed(
+                dask.delayed(_las.read_points, pure=True)(p, first, count, rows_before,
+                                                          reference),
+                shape=(count, 4), dtype=float))
+            rows_before += lines
     return da.concatenate(blocks, axis=0)
 
 
