@@ -28,22 +28,16 @@ import time
 import numpy as np
 
 from . import _sfit
-from ._errors import Error
+from ._dask_input import (LAS_CHUNK_POINTS, _as_points, _block_stats, _error,
+                          points_from_files)
 
-__all__ = ["DaskFit", "fit", "in_memory_fit", "points_from_files", "partial_bytes"]
+__all__ = ["DaskFit", "LAS_CHUNK_POINTS", "fit", "in_memory_fit", "points_from_files",
+           "partial_bytes"]
 
 # No task result over this many bytes (one chunk's normal equations grow with nu nv).
 MAX_RESULT_BYTES = 256 << 20
-
-
-def _error(code, message, **place):
-    e = Error(message)
-    e.code = code
-    e.exit_code = {"usage": 2, "input-unreadable": 3, "input-data": 5,
-                   "tolerance-not-met": 7}.get(code, 8)
-    for k, v in place.items():
-        setattr(e, k, v)
-    return e
+# Above this many points the count search runs on a sample of the rows (fit(sample_points=)).
+SAMPLE_POINTS = 2_000_000
 
 
 def partial_bytes(nu, nv, degree_u=3, degree_v=3):
@@ -51,146 +45,33 @@ def partial_bytes(nu, nv, degree_u=3, degree_v=3):
     return 8 * _sfit._partial_size(nu, nv, degree_u, degree_v)
 
 
-# ---------------------------------------------------------------------------- the input
-
-def _read_file(path, row_offset):
-    """Worker task: one file as an (n, 4) array (x, y, z, row), rows numbered from
-    `row_offset`."""
-    if str(path).endswith(".npy"):
-        a = np.load(path)
-        if a.ndim == 3 and a.shape[2] == 3:  # a grid: (M, N, 3)
-            rows = np.repeat(np.arange(a.shape[0], dtype=float), a.shape[1])
-            return np.column_stack([a.reshape(-1, 3).astype(float), rows + row_offset])
-        if a.ndim == 2 and a.shape[1] == 4:
-            a = a.astype(float)
-            a[:, 3] += row_offset
-            return a
-        raise _error("input-data", f"{path}: expected an (n, 4) array (x, y, z, row) or an "
-                     f"(M, N, 3) grid, got shape {a.shape}", file=str(path))
-    rows = _sfit.load_rows(str(path))  # .rows, .srows, ...: the CLI's reader
-    n = sum(len(r) for r in rows)
-    out = np.empty((n, 4))
-    k = 0
-    for j, r in enumerate(rows):
-        out[k:k + len(r), :3] = r
-        out[k:k + len(r), 3] = row_offset + j
-        k += len(r)
-    return out
-
-
-def _file_shape(path):
-    """Worker task: (points, rows) of one file."""
-    a = _read_file(path, 0)
-    return a.shape[0], (int(a[-1, 3]) + 1 if len(a) else 0)
-
-
-def _is_las(path):
-    return str(path).lower().endswith(".las")
-
-
-# A LAS file is read in pieces of this many points (128 MB as the (n, 4) float64 chunk).
-LAS_CHUNK_POINTS = 4 << 20
-
-
-def points_from_files(paths):
-    """A dask array (n, 4) of the points of `paths` (.rows, .srows, .npy, .las), each read by
-    the worker that computes it: one chunk per file, a LAS file in pieces of whole scan lines
-    of at most LAS_CHUNK_POINTS points; the rows of a file follow those of the file before (a
-    LAS file's rows are its scan lines, all turned to run one way: sfit/_las.py). One pass
-    reads every file once on the workers to learn its size (of a LAS file, the flags of its
-    points)."""
-    import dask
-    import dask.array as da
-
-    from . import _las
-
-    paths = [str(p) for p in paths]
-    if not paths:
-        raise _error("usage", "no files given", option="points")
-    shapes = dask.compute(*[
-        dask.delayed(_las.scan_lines, pure=True)(p, LAS_CHUNK_POINTS) if _is_las(p)
-        else dask.delayed(_file_shape, pure=True)(p) for p in paths])
-    blocks = []
-    rows_before = 0
-    for p, shape in zip(paths, shapes):
-        if not _is_las(p):
-            blocks.append(da.from_delayed(dask.delayed(_read_file, pure=True)(p, rows_before),
-                                          shape=(shape[0], 4), dtype=float))
-            rows_before += shape[1]
-            continue
-        reference, pieces = shape
-        for first, count, lines in pieces:
-            blocks.append(da.from_delayed(
-                dask.delayed(_las.read_points, pure=True)(p, first, count, rows_before,
-                                                          reference),
-                shape=(count, 4), dtype=float))
-            rows_before += lines
-    return da.concatenate(blocks, axis=0)
-
-
-def _as_points(points, rows):
-    """The input as one dask array (n, 4) of float64 chunked along the points only."""
-    import dask.array as da
-
-    if isinstance(points, (list, tuple)) and points and isinstance(points[0], str) or \
-            (isinstance(points, (list, tuple)) and points and hasattr(points[0], "__fspath__")):
-        return points_from_files(points)
-    if hasattr(points, "to_dask_array") and hasattr(points, "columns"):  # dask.dataframe
-        missing = [c for c in ("x", "y", "z", "row") if c not in points.columns]
-        if missing:
-            raise _error("usage", f"the dataframe lacks column(s) {', '.join(missing)}",
-                         option="points")
-        points = points[["x", "y", "z", "row"]].to_dask_array(lengths=True)
-    if not isinstance(points, da.Array):
-        points = da.from_array(np.asarray(points))
-    if rows is not None:
-        if points.ndim != 2 or points.shape[1] != 3:
-            raise _error("usage", f"with rows, points must be (n, 3), got {points.shape}",
-                         option="points")
-        rows = rows if isinstance(rows, da.Array) else da.from_array(np.asarray(rows))
-        if rows.shape != (points.shape[0],):
-            raise _error("usage", f"rows must have one entry per point, got {rows.shape}",
-                         option="rows")
-        rows = rows.rechunk((points.chunks[0],))
-        points = da.concatenate([points.astype(float), rows[:, None].astype(float)], axis=1)
-    if points.ndim != 2 or points.shape[1] != 4:
-        raise _error("usage", f"points must be (n, 4) (x, y, z, row), or (n, 3) with rows; got "
-                     f"{points.shape}", option="points")
-    if any(math.isnan(c) for c in points.chunks[0]):
-        points = points.compute_chunk_sizes()
-    return points.astype(float).rechunk({1: 4})
-
-
 # ---------------------------------------------------------------------------- the tasks
 
-def _block_stats(block):
-    """Worker task: the box, and the rows of a chunk with their points (rows consecutive)."""
-    if len(block) == 0:
-        return None
-    if not np.all(np.isfinite(block)):
-        bad = int(np.argmax(~np.all(np.isfinite(block), axis=1)))
-        return {"error": f"a non-finite number at chunk point {bad}"}
-    r = block[:, 3]
-    if np.any(r != np.floor(r)) or r[0] < 0:
-        return {"error": "row numbers must be integers >= 0"}
-    d = np.diff(r)
-    if np.any(d < 0):
-        k = int(np.argmax(d < 0))
-        return {"error": f"rows out of order: row {int(r[k + 1])} after row {int(r[k])} (the "
-                "points of a row must be consecutive, the rows in order)"}
-    cut = np.flatnonzero(d) + 1
-    starts = np.concatenate([[0], cut])
-    counts = np.diff(np.concatenate([starts, [len(r)]]))
-    return {"min": block[:, :3].min(axis=0), "max": block[:, :3].max(axis=0),
-            "rows": r[starts].astype(np.int64), "counts": counts.astype(np.int64)}
+def _rows_sample(block, info, step):
+    """The chunk's points of every step-th row (and the last row), with the row starts moved so
+    each kept point keeps its index in its row (the points between were taken out)."""
+    if step == 1:
+        return block, info
+    g0, r0, starts, sizes, M = info
+    r = block[:, 3].astype(np.int64)
+    keep = (r % step == 0) | (r == M - 1)
+    removed = np.cumsum(~keep)
+    first = np.flatnonzero(np.diff(r, prepend=-1))  # each row's first point in the chunk
+    starts = starts.copy()
+    starts[r[first] - r0] -= removed[first] - ~keep[first]
+    return block[keep], (g0, r0, starts, sizes, M)
 
 
-def _partial(block, info, centre, nu, nv, spec):
+def _partial(block, info, centre, nu, nv, spec, step=1):
+    block, info = _rows_sample(block, info, step)
     return _sfit._partial_normal_equations(block, info[0], info[1], info[2], info[3], info[4],
                                            centre, nu, nv, *spec)
 
 
-def _deviation(block, info, centre, control, spec):
+def _deviation(block, info, centre, control, spec, step=1):
+    block, info = _rows_sample(block, info, step)
+    if len(block) == 0:
+        return np.zeros(3)
     return _sfit._chunk_deviation(block, info[0], info[1], info[2], info[3], info[4], centre,
                                   control, *spec)
 
@@ -238,7 +119,8 @@ class _Runner:
 
 
 def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, closed="",
-        parameters="uniform", rows=None, counts=None, split_every=8, progress=False):
+        parameters="uniform", rows=None, counts=None, split_every=8, progress=False,
+        sample_points=SAMPLE_POINTS):
     """One surface from points spread over a Dask cluster.
 
     points: a dask.array (n, 4) of x, y, z, row; or (n, 3) with `rows` (n,); or a
@@ -248,6 +130,10 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     tol / tol_rel: T, as sfit.fit (default 1e-3 of the bounding-box diagonal).
     parameters: "uniform" (default) or "paper". counts: (nu, nv) to fit at, no search.
     split_every: the tree reduction's fan-in. progress: distributed.progress() per pass.
+    sample_points: above this many points the counts are searched on every k-th row (about
+    this many points; each chunk filtered by its worker), then verified on every point and
+    raised until they hold there (coarse to fine: two passes over all the points where the
+    sample's pair holds).
     Returns a DaskFit equal to in_memory_fit() of the same points at the same counts. Raises
     sfit.Error ("usage", "input-data", "tolerance-not-met" when no pair holds T).
     """
@@ -326,75 +212,102 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     max_u = max(du + 1, int(row_sizes.max()))
     max_v = max(dv + 1, M)
 
-    def solve(nu, nv):
-        """One round at (nu, nv): partial normal equations tree-reduced, solved here."""
+    def solve(nu, nv, step):
+        """One round at (nu, nv) over every step-th row: partial normal equations
+        tree-reduced, solved here."""
         nbytes = partial_bytes(nu, nv, du, dv)
         if nbytes > MAX_RESULT_BYTES:
             raise _error("usage", f"{nu} x {nv} control points: one chunk's normal equations "
                          f"would be {nbytes / 2**20:.0f} MiB, above the 256 MiB a task may "
                          "return", option="counts")
         parts = [da.from_delayed(dask.delayed(_partial, pure=True)(b, info, centre, nu, nv,
-                                                                    spec),
+                                                                    spec, step),
                                  shape=(nbytes // 8,), dtype=float) for b, info in work]
         total = da.stack(parts).sum(axis=0, split_every=split_every)
         (flat,) = run(total)
+        kept = row_sizes[(np.arange(M) % step == 0) | (np.arange(M) == M - 1)]
         ok, control, guard = _sfit._solve_normal_equations(
-            flat, nu, nv, du, dv, cu, cv, int(row_sizes.min()), box_min, box_max)
+            flat, nu, nv, du, dv, cu, cv, int(kept.min()), box_min, box_max)
         return control if ok else None, guard
 
-    def check(control):
+    def check(control, step):
         """The largest deviation per axis, mapped over the chunks, max-reduced."""
         c = dask.delayed(control, pure=True)
-        parts = [da.from_delayed(dask.delayed(_deviation, pure=True)(b, info, centre, c, spec),
+        parts = [da.from_delayed(dask.delayed(_deviation, pure=True)(b, info, centre, c, spec,
+                                                                      step),
                                  shape=(3,), dtype=float) for b, info in work]
         (dev,) = run(da.stack(parts).max(axis=0, split_every=split_every))
         return dev
 
-    def attempt(nu, nv):
-        control, guard = solve(nu, nv)
-        dev = check(control) if control is not None else None
+    def attempt(nu, nv, step):
+        control, guard = solve(nu, nv, step)
+        dev = check(control, step) if control is not None else None
         # The round-off allowance only on an axis whose T is 0, as in the library.
         holds = dev is not None and guard is None and bool(
             np.all(dev <= T + np.where(T == 0, roundoff, 0.0)))
-        pairs.append({"counts": [nu, nv], "holds": holds,
+        pairs.append({"counts": [nu, nv], "holds": holds, "rows_step": step,
                       "max_deviation": None if dev is None else dev.tolist(),
                       "guard": guard})
         return holds, control, dev
 
     results = {}
 
-    def holds_at(nu, nv):
-        if (nu, nv) not in results:
-            results[(nu, nv)] = attempt(nu, nv)
-        return results[(nu, nv)][0]
+    def holds_at(nu, nv, step=1):
+        if (nu, nv, step) not in results:
+            results[(nu, nv, step)] = attempt(nu, nv, step)
+        return results[(nu, nv, step)][0]
 
+    def search(step, top_v):
+        """Gallop both counts up from degree + 1 until the surface holds, then bisect nu at
+        that nv, then nv at the nu found (each probe one round over the data). Holding is not
+        monotone in the counts (the parameters move with them): the bisection finds a count
+        that holds with the one below failing, as the library's search does."""
+        nu, nv = min(max_u, 2 * (du + 1)), min(top_v, 2 * (dv + 1))
+        while not holds_at(nu, nv, step):
+            if nu == max_u and nv == top_v:
+                return None
+            nu, nv = min(max_u, 2 * nu), min(top_v, 2 * nv)
+        lo, hi = du, nu  # lo: below the smallest count
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            lo, hi = (lo, mid) if holds_at(mid, nv, step) else (mid, hi)
+        nu = hi
+        lo, hi = dv, nv
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            lo, hi = (lo, mid) if holds_at(nu, mid, step) else (mid, hi)
+        return nu, hi
+
+    # Coarse to fine: the search on every step-th row (at least 64 rows and 4 per control
+    # point across), then the pair on every point, raised by an eighth until it holds there.
+    step = 1
+    if counts is None and n_points > sample_points:
+        step = max(1, min(-(-n_points // sample_points), (M - 1) // max(64, 4 * (dv + 1))))
+    stop = "minimal"
     if counts is not None:
         nu, nv = (int(c) for c in counts)
         if nu < du + 1 or nv < dv + 1:
             raise _error("usage", f"counts ({nu}, {nv}) below degree + 1", option="counts")
         holds_at(nu, nv)
+        stop = "counts given"
     else:
-        # Gallop both counts up from degree + 1 until the surface holds, then bisect nu at
-        # that nv, then nv at the nu found (each probe one round over the data). Holding is not
-        # monotone in the counts (the parameters move with them): the bisection finds a count
-        # that holds with the one below failing, as the library's search does.
-        nu, nv = min(max_u, 2 * (du + 1)), min(max_v, 2 * (dv + 1))
-        while not holds_at(nu, nv):
-            if nu == max_u and nv == max_v:
-                raise _error("tolerance-not-met", f"no surface within T up to {nu} x {nv} "
-                             "control points (the largest the data allows)")
-            nu, nv = min(max_u, 2 * nu), min(max_v, 2 * nv)
-        lo, hi = du, nu  # lo: below the smallest count
-        while hi - lo > 1:
-            mid = (lo + hi) // 2
-            lo, hi = (lo, mid) if holds_at(mid, nv) else (mid, hi)
-        nu = hi
-        lo, hi = dv, nv
-        while hi - lo > 1:
-            mid = (lo + hi) // 2
-            lo, hi = (lo, mid) if holds_at(nu, mid) else (mid, hi)
-        nv = hi
-    holds, control, dev = results[(nu, nv)]
+        found = search(step, max_v if step == 1 else min(max_v, 1 + (M - 1) // step))
+        if found is None and step > 1:
+            step, found = 1, search(1, max_v)
+        if found is None:
+            raise _error("tolerance-not-met", f"no surface within T up to {max_u} x {max_v} "
+                         "control points (the largest the data allows)")
+        nu, nv = found
+        if step > 1:
+            while not holds_at(nu, nv):
+                if nu == max_u and nv == max_v:
+                    raise _error("tolerance-not-met", f"no surface within T up to {nu} x {nv} "
+                                 "control points (the largest the data allows)")
+                nu, nv = min(max_u, nu + max(1, nu // 8)), min(max_v, nv + max(1, nv // 8))
+            stop = (f"minimal on every {step}th row, verified on every point" if
+                    (nu, nv) == found else f"raised from {found[0]} x {found[1]} (minimal on "
+                    f"every {step}th row) until every point held")
+    holds, control, dev = results[(nu, nv, 1)]
     if control is None:
         raise _error("tolerance-not-met", f"no surface with {nu} x {nv} control points: a knot "
                      "span has no data", option="counts")
@@ -405,7 +318,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         "max_deviation": dev.tolist(), "within_tolerance": holds,
         "control_points": [nu, nv], "degree": [du, dv], "closed": [cu, cv],
         "parametrization": parameters, "method": "dask least squares",
-        "pairs_tried": len(pairs), "chunks": len(work),
+        "pairs_tried": len(pairs), "chunks": len(work), "stop_reason": stop,
+        "rows_step": step, "full_passes": 1 + 2 * sum(p["rows_step"] == 1 for p in pairs),
         "partial_bytes": partial_bytes(nu, nv, du, dv),
         "roundoff": roundoff, "seconds": time.perf_counter() - t0,
     }

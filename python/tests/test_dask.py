@@ -106,6 +106,25 @@ def test_any_chunking_gives_the_same_surface(cluster, data, searched, chunks):
     assert got.report["partial_bytes"] == sfit.dask.partial_bytes(nu, nv)
 
 
+def test_a_search_on_every_kth_row_is_verified_on_every_point(cluster, data, searched):
+    """Coarse to fine: the pairs searched on a sample of the rows (each chunk filtered by its
+    worker), the pair found fitted and checked on all 10^6 points, equal to the in-memory fit
+    there; no more control points than a quarter above the full search's."""
+    with distributed.Client(cluster):
+        x = da.from_array(data, chunks=(-(-len(data) // 16), 4)).persist()
+        got = sfit.dask.fit(x, tol_rel=1e-3, sample_points=100_000)
+    r = got.report
+    assert r["rows_step"] == 10 and r["within_tolerance"]
+    assert all(d <= t for d, t in zip(r["max_deviation"], r["tolerance"]))
+    assert r["full_passes"] < searched.report["full_passes"]
+    assert r["stop_reason"].startswith(("minimal on every 10th row", "raised from"))
+    nu, nv = r["control_points"]
+    snu, snv = searched.report["control_points"]
+    assert nu * nv <= 1.25 * snu * snv
+    mem = sfit.dask.in_memory_fit(as_rows(data), (nu, nv), tol=r["tolerance"])
+    assert relative_difference(got.surface.control_points, mem.surface.control_points) < 1e-10
+
+
 def test_dataframe_files_and_separate_rows_give_the_same_surface(cluster, tmp_path):
     pts = ragged_field(20000, seed=5)
     rows = as_rows(pts)

@@ -70,13 +70,13 @@ def write_las(path, rows, fmt=1, version=(1, 2), scale=0.001, edge=True, directi
 
 @pytest.mark.parametrize("fmt,version", [(0, (1, 0)), (1, (1, 2)), (6, (1, 4))])
 @pytest.mark.parametrize("flags", ["edge", "direction", "both"])
-def test_points_and_scan_lines_come_back_across_pieces(tmp_path, monkeypatch, fmt, version, flags):
+def test_points_and_scan_lines_come_back_across_pieces(tmp_path, fmt, version, flags):
     rows = scan()
     path = tmp_path / "strip.las"
     scaled, offset, scale = write_las(path, rows, fmt=fmt, version=version,
                                       edge=flags != "direction", direction=flags != "edge")
-    monkeypatch.setattr(sfit.dask, "LAS_CHUNK_POINTS", 97)
-    x = sfit.dask.points_from_files([path, path])  # two files: the second's rows follow
+    # Two files (the second's rows follow), in pieces of whole lines of at most 97 points.
+    x = sfit.dask.points_from_files([path, path], las_chunk_points=97)
     got = x.compute()
     # Every row as written, the lines run backwards turned round, rounded to the file's scale.
     stored = [np.round(r) * scale + offset for r in scaled]
@@ -100,7 +100,7 @@ def test_a_las_strip_fits_as_its_rows_do_in_memory(tmp_path, monkeypatch):
     rows = scan(lines=31)
     path = tmp_path / "strip.las"
     write_las(path, rows, fmt=6, version=(1, 4))
-    monkeypatch.setattr(sfit.dask, "LAS_CHUNK_POINTS", 500)
+    monkeypatch.setattr(sfit._dask_input, "LAS_CHUNK_POINTS", 500)
     stored = sfit.dask.points_from_files([path]).compute()
     cut = np.flatnonzero(np.diff(stored[:, 3])) + 1
     as_read = [r[:, :3] for r in np.split(stored, cut)]
