@@ -47,11 +47,21 @@ def partial_bytes(nu, nv, degree_u=3, degree_v=3):
 
 # ---------------------------------------------------------------------------- the tasks
 
+class _Chunk:
+    """A chunk's points with their rows' statistics, as one task result (a tuple would be
+    taken for a task by Dask's graph optimisation)."""
+
+    __slots__ = ("block", "info")
+
+    def __init__(self, block, info):
+        self.block, self.info = block, info
+
+
 def _rows_sample(block, info, step):
     """The chunk's points of every step-th row (and the last row), with the row starts moved so
     each kept point keeps its index in its row (the points between were taken out)."""
     if step == 1:
-        return block, info
+        return _Chunk(block, info)
     g0, r0, starts, sizes, M = info
     r = block[:, 3].astype(np.int64)
     keep = (r % step == 0) | (r == M - 1)
@@ -59,17 +69,17 @@ def _rows_sample(block, info, step):
     first = np.flatnonzero(np.diff(r, prepend=-1))  # each row's first point in the chunk
     starts = starts.copy()
     starts[r[first] - r0] -= removed[first] - ~keep[first]
-    return block[keep], (g0, r0, starts, sizes, M)
+    return _Chunk(block[keep], (g0, r0, starts, sizes, M))
 
 
-def _partial(block, info, centre, nu, nv, spec, step=1):
-    block, info = _rows_sample(block, info, step)
+def _partial(chunk, centre, nu, nv, spec):
+    block, info = chunk.block, chunk.info
     return _sfit._partial_normal_equations(block, info[0], info[1], info[2], info[3], info[4],
                                            centre, nu, nv, *spec)
 
 
-def _deviation(block, info, centre, control, spec, step=1):
-    block, info = _rows_sample(block, info, step)
+def _deviation(chunk, centre, control, spec):
+    block, info = chunk.block, chunk.info
     if len(block) == 0:
         return np.zeros(3)
     return _sfit._chunk_deviation(block, info[0], info[1], info[2], info[3], info[4], centre,
@@ -106,6 +116,13 @@ class _Runner:
         except (ImportError, ValueError):
             self.client = None
 
+    def persist(self, *collections):
+        import dask
+
+        if self.client is None:
+            return dask.persist(*collections)
+        return self.client.persist(list(collections))
+
     def __call__(self, *collections):
         import dask
 
@@ -131,9 +148,9 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     parameters: "uniform" (default) or "paper". counts: (nu, nv) to fit at, no search.
     split_every: the tree reduction's fan-in. progress: distributed.progress() per pass.
     sample_points: above this many points the counts are searched on every k-th row (about
-    this many points; each chunk filtered by its worker), then verified on every point and
-    raised until they hold there (coarse to fine: two passes over all the points where the
-    sample's pair holds).
+    this many points; each chunk filtered once by its worker and kept there), then verified on
+    every point and raised until they hold there (coarse to fine: two passes over all the
+    points where the sample's pair holds).
     Returns a DaskFit equal to in_memory_fit() of the same points at the same counts. Raises
     sfit.Error ("usage", "input-data", "tolerance-not-met" when no pair holds T).
     """
@@ -220,9 +237,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
             raise _error("usage", f"{nu} x {nv} control points: one chunk's normal equations "
                          f"would be {nbytes / 2**20:.0f} MiB, above the 256 MiB a task may "
                          "return", option="counts")
-        parts = [da.from_delayed(dask.delayed(_partial, pure=True)(b, info, centre, nu, nv,
-                                                                    spec, step),
-                                 shape=(nbytes // 8,), dtype=float) for b, info in work]
+        parts = [da.from_delayed(dask.delayed(_partial, pure=True)(c, centre, nu, nv, spec),
+                                 shape=(nbytes // 8,), dtype=float) for c in chunks_at[step]]
         total = da.stack(parts).sum(axis=0, split_every=split_every)
         (flat,) = run(total)
         kept = row_sizes[(np.arange(M) % step == 0) | (np.arange(M) == M - 1)]
@@ -233,9 +249,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     def check(control, step):
         """The largest deviation per axis, mapped over the chunks, max-reduced."""
         c = dask.delayed(control, pure=True)
-        parts = [da.from_delayed(dask.delayed(_deviation, pure=True)(b, info, centre, c, spec,
-                                                                      step),
-                                 shape=(3,), dtype=float) for b, info in work]
+        parts = [da.from_delayed(dask.delayed(_deviation, pure=True)(w, centre, c, spec),
+                                 shape=(3,), dtype=float) for w in chunks_at[step]]
         (dev,) = run(da.stack(parts).max(axis=0, split_every=split_every))
         return dev
 
@@ -283,6 +298,12 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     step = 1
     if counts is None and n_points > sample_points:
         step = max(1, min(-(-n_points // sample_points), (M - 1) // max(64, 4 * (dv + 1))))
+    # Each chunk as (points, rows); the sample's filtered once by its worker and kept there
+    # (persisted: a probe on it reads 1/step of the points, not the chunk again).
+    chunks_at = {1: [dask.delayed(_rows_sample, pure=True)(b, info, 1) for b, info in work]}
+    if step > 1:
+        chunks_at[step] = list(run.persist(
+            *[dask.delayed(_rows_sample, pure=True)(b, info, step) for b, info in work]))
     stop = "minimal"
     if counts is not None:
         nu, nv = (int(c) for c in counts)
@@ -303,7 +324,15 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
                 if nu == max_u and nv == max_v:
                     raise _error("tolerance-not-met", f"no surface within T up to {nu} x {nv} "
                                  "control points (the largest the data allows)")
-                nu, nv = min(max_u, nu + max(1, nu // 8)), min(max_v, nv + max(1, nv // 8))
+                # Up by an eighth: one count, the other, then both (fewest control points first).
+                up_u, up_v = min(max_u, nu + max(1, nu // 8)), min(max_v, nv + max(1, nv // 8))
+                for a, b in sorted({(nu, up_v), (up_u, nv)} - {(nu, nv)},
+                                   key=lambda c: (c[0] * c[1], c)):
+                    if holds_at(a, b):
+                        nu, nv = a, b
+                        break
+                else:
+                    nu, nv = up_u, up_v
             stop = (f"minimal on every {step}th row, verified on every point" if
                     (nu, nv) == found else f"raised from {found[0]} x {found[1]} (minimal on "
                     f"every {step}th row) until every point held")
