@@ -3,7 +3,20 @@ const token = new URLSearchParams(location.search).get("token") || "";
 
 export class ApiError extends Error {}
 
+// Requests that may run a full search (all but drag steps and the light calls): while one is
+// out, the page shows the search's progress (GET /api/progress).
+let full = 0;
+export const fullInFlight = () => full;
+const light = (path, body) => path.startsWith("/api/progress") || path === "/api/cancel" ||
+  (path.startsWith("/api/state") || path === "/api/options-table") || (body && body.phase === "drag");
+
 export async function call(method, path, body) {
+  const counted = !light(path, body);
+  if (counted) full++;
+  try { return await send(method, path, body); } finally { if (counted) full--; }
+}
+
+async function send(method, path, body) {
   const res = await fetch(path, {
     method,
     headers: { "X-Sfit-Token": token, "Content-Type": "application/json" },
@@ -25,3 +38,5 @@ export const exportBeside = (format) => call("POST", "/api/export", { format });
 export const downloadUrl = (format) =>
   `/api/export?format=${encodeURIComponent(format)}&token=${encodeURIComponent(token)}`;
 export const search = (o) => call("POST", "/api/search", o || {});
+export const progress = () => call("GET", "/api/progress");
+export const cancel = () => call("POST", "/api/cancel", {});

@@ -255,6 +255,9 @@ json state_json(const Session& s, bool with_rows) {
   j["undo"] = s.undo_depth();
   j["redo"] = s.redo_depth();
   j["rows_refitted"] = s.rows_refitted();
+  // No surface within T was found (the file opened, or an edit left it, so): the best one
+  // found is shown, and why the search failed.
+  j["best_effort"] = s.best_effort().empty() ? json(nullptr) : json(s.best_effort());
   j["points"] = rows.total_points();
   if (with_rows) {
     json rj = json::array();

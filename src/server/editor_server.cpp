@@ -6,6 +6,7 @@
 #include "file_lock.h"
 #include "hold.h"
 #include "save_file.h"
+#include "search_watch.h"
 #include "session.h"
 #include "sfit/error.h"
 #include "sfit/io/file_names.h"
@@ -78,6 +79,7 @@ std::string lower(std::string s) {
 
 struct EditorServer::Impl {
   EditorConfig config;
+  SearchWatch search;  // the full searches' progress, and their cancel (before the session)
   Session session;
   std::mutex mutex;  // one request at a time touches the session
   GuardedHttpServer http{GuardedHttpServer::Limits{}};
@@ -92,7 +94,7 @@ struct EditorServer::Impl {
   DragWatch watch{mutex, session, std::chrono::milliseconds(5000)};  // a drag whose page left
 
   explicit Impl(EditorConfig c)
-      : config(std::move(c)), session(std::move(config.rows), config.options) {
+      : config(std::move(c)), session(std::move(config.rows), search.watched(config.options)) {
     config.rows = Rows();
   }
 
@@ -160,10 +162,12 @@ struct EditorServer::Impl {
 
   // Runs `f` under the session lock; an Error becomes a JSON error (400 for the request's
   // fault, 500 for a write that failed), the state unchanged.
+  // `cancellable`: a drag step or POST /api/cancel may cancel the full search `f` runs.
   template <class F>
-  void guarded(httplib::Response& res, F&& f) {
+  void guarded(httplib::Response& res, F&& f, bool cancellable = false) {
     try {
       std::lock_guard<std::mutex> lock(mutex);
+      const SearchWatch::Scope scope(search, cancellable);
       f();
     } catch (const Error& e) {
       const bool ours = e.code() == ErrorCode::kUsage || e.code() == ErrorCode::kInputData ||
@@ -282,19 +286,44 @@ struct EditorServer::Impl {
         return;
       }
       const bool drag = body.value("phase", json()) == "drag";
-      guarded(res, [&] {
-        if (ticket && drag_steps.overtaken(key, *ticket, seq)) {  // a newer step came: skip this
-          json j = state(false);
-          j["skipped"] = true;
-          reply(res, 200, j);
-          return;
-        }
-        apply_edit(session, body);
-        const bool rows = !drag && !(req.has_param("rows") && req.get_param_value("rows") == "0");
-        json j = state(rows);
-        j["skipped"] = false;
-        reply(res, 200, j);
-      });
+      const bool rest = body.value("phase", json()) == "rest";
+      if (drag) search.cancel();  // a full search at rest under way is stale now
+      guarded(
+          res,
+          [&] {
+            if (ticket &&
+                drag_steps.overtaken(key, *ticket, seq)) {  // a newer step came: skip this
+              json j = state(false);
+              j["skipped"] = true;
+              reply(res, 200, j);
+              return;
+            }
+            try {
+              apply_edit(session, body);
+            } catch (const Error& e) {
+              if (!rest || e.code() != ErrorCode::kCancelled) throw;
+              search.dropped("the full search at rest");  // the drag goes on from its quick state
+              json j = state(false);
+              j["skipped"] = true;
+              j["cancelled"] = true;
+              reply(res, 200, j);
+              return;
+            }
+            const bool rows =
+                !drag && !(req.has_param("rows") && req.get_param_value("rows") == "0");
+            json j = state(rows);
+            j["skipped"] = false;
+            reply(res, 200, j);
+          },
+          rest);
+    });
+    // Drops a full search under way that a drag made stale (a rest's, the hold's search).
+    http.Post("/api/cancel", [this](const httplib::Request&, httplib::Response& res) {
+      reply(res, 200, json{{"cancelled", search.cancel()}});
+    });
+    // The progress of the full search under way (not behind the session's lock).
+    http.Get("/api/progress", [this](const httplib::Request&, httplib::Response& res) {
+      reply(res, 200, search.progress());
     });
     auto history = [this](bool undo) {
       return [this, undo](const httplib::Request& req, httplib::Response& res) {
@@ -322,9 +351,18 @@ struct EditorServer::Impl {
       });
     });
     http.Post("/api/search", [this](const httplib::Request& req, httplib::Response& res) {
-      guarded(res, [&] {
-        reply(res, 200, search_without_hold(body_of(req), session, config.options.method));
-      });
+      guarded(
+          res,
+          [&] {
+            try {
+              reply(res, 200, search_without_hold(body_of(req), session, config.options.method));
+            } catch (const Error& e) {
+              if (e.code() != ErrorCode::kCancelled) throw;
+              search.dropped("the hold's search");
+              reply(res, 200, json{{"cancelled", true}});
+            }
+          },
+          true);
     });
     http.Post("/api/save", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
