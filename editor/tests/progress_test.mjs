@@ -82,7 +82,7 @@ test("a drag during the full search at rest drops it; its progress was shown; no
   const st = (await api.get("/api/state")).json;
   assert.equal(st.final, true);
   assert.equal(st.report.within_tolerance, true);
-  assert.equal(st.undo, st0.undo + 1, "the drag is one undo step");
+  assert.equal(st.undo, st0.undo + 1, `the drag is one undo step; the server said: ${ed.stderr()}`);
   assert.ok(st.rows[50][50][2] > st0.rows[50][50][2], "the point moved up");
   assert.equal(await page.evaluate(() => window.sfitEditor.state.version), st.version);
   assert.equal(await page.$eval("#progress", (e) => e.style.display), "none", "no progress once idle");
