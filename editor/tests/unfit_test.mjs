@@ -2,7 +2,7 @@
 // software GL) with real mouse and keyboard events: the best surface found is shown with the
 // reason, an edit that makes it fit brings the normal state back; a final surface that misses
 // T (here: held counts after a long drag) has its failing points ringed and listed, and a
-// click on one in the list selects it.
+// click on one in the list selects it (the screenshot editor-unfit.png of docs/editor.md).
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { join, dirname } from "node:path";
@@ -13,6 +13,7 @@ import { client } from "./api.mjs";
 skipUnlessChromium();
 const SFIT = process.env.SFIT_CLI;
 const EXAMPLES = process.env.SFIT_EXAMPLES;
+const OUT = process.env.SFIT_OUT || ".";
 if (!SFIT || !EXAMPLES) throw new Error("set SFIT_CLI and SFIT_EXAMPLES (CTest does)");
 const puppeteer = await loadPuppeteer();
 // Degree 20 at T = 0: the count search finds no surface (sfit fit exits 7 on it).
@@ -111,6 +112,9 @@ test("a final surface over T: the failing points ringed and listed; a click in t
     await page.click(`#failing .failpoint[data-row="${last[0]}"][data-index="${last[1]}"]`);
     assert.deepEqual(await page.evaluate(() => window.sfitEditor.selected()), { row: last[0], index: last[1] });
     assert.equal(await page.$eval("#selName", (e) => e.textContent), `row ${last[0]}, point ${last[1]}`);
+    await page.select("#mode", "deviation");
+    await page.evaluate(() => window.sfitEditor.nextFrame());
+    await page.screenshot({ path: join(OUT, "editor-unfit.png") });
     // Release the hold: the search's surface, within T, and no list.
     v = await version(page);
     await page.click("#hold");
