@@ -4,12 +4,14 @@
 // (10^4 points; bench/synthetic.h's terrain). Drag steps that a newer one
 // overtook are skipped, not shown (latest wins), so only the shown ones have a latency of
 // their own; every mouse event is also timed to the first frame showing it or a newer step.
-// Usage (after building):
-//   SFIT_CLI=build/apps/sfit/sfit node editor/tests/bench_browser.mjs [rows] [points per row]
+// Reports p50/p95, the moves drawn and superseded, and the machine's load (1-minute load
+// average, at the start and the end). A benchmark, not a test: nothing is asserted.
+// Usage (after building; editor/node_modules from `npm ci`):
+//   SFIT_CLI=build/apps/sfit/sfit nice node bench/editor_latency.mjs [rows] [points per row]
 import { writeFileSync, mkdtempSync, rmSync } from "node:fs";
-import { tmpdir } from "node:os";
+import { tmpdir, loadavg, cpus } from "node:os";
 import { join } from "node:path";
-import { skipUnlessChromium, loadPuppeteer, startEditor, launch } from "./browser.mjs";
+import { skipUnlessChromium, loadPuppeteer, startEditor, launch } from "../editor/tests/browser.mjs";
 
 skipUnlessChromium();
 const SFIT = process.env.SFIT_CLI;
@@ -27,6 +29,7 @@ for (let j = 0; j < M; j++) {
 }
 writeFileSync(file, text);
 
+const loadStart = loadavg()[0];
 const compositing = process.env.SFIT_CHROMIUM_GL_COMPOSITING === "1" ? "GL compositing on SwiftShader" : "software compositing";
 const ed = await startEditor(SFIT, file);
 const puppeteer = await loadPuppeteer();
@@ -78,6 +81,9 @@ console.log(`  median split: waiting for the previous request ${med("wait").toFi
   `(waiting for the frame before ${med("slot").toFixed(1)}, tessellation and buffers ${med("js").toFixed(1)}, drawing ${med("draw").toFixed(1)}, ` +
   `to the next animation frame ${med("show").toFixed(1)})`);
 const moves = results.reduce((s, r) => s + r.moves, 0);
+const loadEnd = loadavg()[0];
+console.log(`load average (1 min) ${loadStart.toFixed(2)} at the start, ${loadEnd.toFixed(2)} at the end, ${cpus().length} cores; ` +
+  `moves drawn ${drag.length}, superseded by a newer one ${moves - drag.length} (of ${moves})`);
 console.log(`points ${M * N} (${compositing}): mouse event -> new frame shown, quick (drag) p50 ${pctl(drag, 0.5).toFixed(1)} ms, ` +
   `p95 ${pctl(drag, 0.95).toFixed(1)} ms (${drag.length} of ${moves} moves shown, the rest overtaken); ` +
   `every mouse event to the first frame showing it or a newer step: p50 ${pctl(every, 0.5).toFixed(1)} ms, ` +
