@@ -24,22 +24,25 @@ FitOptions SearchWatch::watched(FitOptions o) {
 }
 
 bool SearchWatch::cancel() {
+  std::lock_guard<std::mutex> lock(mutex_);  // not between a scope's end and the next's start
   if (!cancellable_.load()) return false;
   cancel_.store(true);
   return true;
 }
 
 SearchWatch::Scope::Scope(SearchWatch& w, bool cancellable) : w_(w) {
+  std::lock_guard<std::mutex> lock(w_.mutex_);
   w_.cancel_.store(false);
   w_.cancellable_.store(cancellable);
-  std::lock_guard<std::mutex> lock(w_.mutex_);
   w_.in_scope_ = true;
   w_.running_ = false;
 }
 
 SearchWatch::Scope::~Scope() {
-  w_.cancellable_.store(false);
+  // A cancel never outlives its request: fits outside one (the drag watch's) run to the end.
   std::lock_guard<std::mutex> lock(w_.mutex_);
+  w_.cancellable_.store(false);
+  w_.cancel_.store(false);
   w_.in_scope_ = false;
   w_.running_ = false;
 }
