@@ -50,6 +50,11 @@ test("a drag during the full search at rest drops it; its progress was shown; no
   const s = await page.evaluate(() => window.sfitEditor.screenOf(50, 50));
   await page.mouse.click(s.x, s.y);
   await page.waitForFunction(() => window.sfitEditor.selected() !== null);
+  await page.evaluate(() => {
+    const f = window.fetch;
+    window.sentLog = [];
+    window.fetch = (u, o) => { window.sentLog.push(`${performance.now().toFixed(0)} ${u} ${o && o.body}`); return f(u, o); };
+  });
   await page.evaluate(() => { window.sfitEditor.restMs = 1e6; });  // no rest while the hand moves
   await page.mouse.move(s.x, s.y);
   await page.mouse.down();
@@ -82,6 +87,7 @@ test("a drag during the full search at rest drops it; its progress was shown; no
   const st = (await api.get("/api/state")).json;
   assert.equal(st.final, true);
   assert.equal(st.report.within_tolerance, true);
+  if (st.undo !== st0.undo + 1) console.log(await page.evaluate(() => window.sentLog.join("\n")));
   assert.equal(st.undo, st0.undo + 1, `the drag is one undo step; the server said: ${ed.stderr()}`);
   assert.ok(st.rows[50][50][2] > st0.rows[50][50][2], "the point moved up");
   assert.equal(await page.evaluate(() => window.sfitEditor.state.version), st.version);
