@@ -43,6 +43,7 @@ test("a file with no surface within its T opens with the best found; an edit tha
     const st = (await api.get("/api/state")).json;
     assert.match(st.best_effort || "", /re-representation cannot hold the tolerance.*shown: /, "the reason and what is shown");
     assert.deepEqual(st.options.degree, [20, 20], "the options stay as asked");
+    assert.match(ed.stderr(), /sfit: warning: no surface within T \(re-representation .*\); the editor shows the best found/);
     assert.equal(st.final, true);
     const errors = [];
     const page = await openPage(browser, ed.url, errors);

@@ -140,6 +140,10 @@ int EditorServer::port() const {
 const std::string& EditorServer::token() const {
   return impl_->token;
 }
+std::string EditorServer::best_effort() const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->session.best_effort();
+}
 std::string EditorServer::url() const {
   return "http://127.0.0.1:" + std::to_string(impl_->port) + "/?token=" + impl_->token;
 }
