@@ -46,7 +46,7 @@ const pctl = (xs, q) => {
 };
 const results = [];
 for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(M / 3), Math.floor(N / 4)]]) {
-  await page.evaluate(() => { window.sfitEditor.latencies = []; window.sfitEditor.moves = []; });
+  await page.evaluate(() => { window.sfitEditor.latencies = []; window.sfitEditor.moves = []; window.sfitEditor.dropped = []; });
   const s = await page.evaluate((r, i) => window.sfitEditor.screenOf(r, i), row, index);
   await page.mouse.click(s.x, s.y);  // select, then drag
   await page.waitForFunction(() => window.sfitEditor.selected() !== null);
@@ -61,10 +61,17 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging,
     { timeout: 120000 });
   await page.evaluate(() => window.sfitEditor.nextFrame());  // the last latency recorded
-  const { lat, times } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies, times: window.sfitEditor.moves }));
-  results.push({ moves, lat, times });
+  const { lat, times, dropped, counts } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
+    times: window.sfitEditor.moves, dropped: window.sfitEditor.dropped.length, counts: window.sfitEditor.state.report.control_points }));
+  results.push({ moves, lat, times, dropped, counts });
 }
 const dragLat = results.flatMap((r) => r.lat.filter((l) => l.phase === "drag"));
+results.forEach((r, k) => {
+  const d = r.lat.filter((l) => l.phase === "drag");
+  console.log(`  drag ${k + 1} (counts at its start ${k ? results[k - 1].counts.join(" x ") : "of the first fit"}): ` +
+    `p50 ${pctl(d.map((l) => l.ms), 0.5).toFixed(1)} ms, request ${pctl(d.map((l) => l.request), 0.5).toFixed(1)} ms ` +
+    `(refit ${pctl(d.map((l) => l.server), 0.5).toFixed(1)}), drawn ${d.length} of ${r.moves}`);
+});
 const drag = dragLat.map((l) => l.ms);
 const fin = results.flatMap((r) => r.lat.filter((l) => l.final).map((l) => l.ms));
 // Every mouse event, overtaken ones too: to the first frame showing its step or a newer one.
@@ -83,7 +90,9 @@ console.log(`  median split: waiting for the previous request ${med("wait").toFi
 const moves = results.reduce((s, r) => s + r.moves, 0);
 const loadEnd = loadavg()[0];
 console.log(`load average (1 min) ${loadStart.toFixed(2)} at the start, ${loadEnd.toFixed(2)} at the end, ${cpus().length} cores; ` +
-  `moves drawn ${drag.length}, superseded by a newer one ${moves - drag.length} (of ${moves})`);
+  `moves drawn ${drag.length}, superseded by a newer one ${moves - drag.length} (of ${moves}); ` +
+  `full searches while the hand rested ${results.reduce((s, r) => s + r.lat.filter((l) => l.phase === "rest").length, 0)} drawn, ` +
+  `${results.reduce((s, r) => s + r.dropped, 0)} dropped as the hand moved on; counts after each drag ${results.map((r) => r.counts.join(" x ")).join(", ")}`);
 console.log(`points ${M * N} (${compositing}): mouse event -> new frame shown, quick (drag) p50 ${pctl(drag, 0.5).toFixed(1)} ms, ` +
   `p95 ${pctl(drag, 0.95).toFixed(1)} ms (${drag.length} of ${moves} moves shown, the rest overtaken); ` +
   `every mouse event to the first frame showing it or a newer step: p50 ${pctl(every, 0.5).toFixed(1)} ms, ` +

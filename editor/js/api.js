@@ -1,4 +1,5 @@
 // The editor's JSON API (docs/editor.md), with the token from the page's address.
+import { unpack } from "./pack.js";
 const token = new URLSearchParams(location.search).get("token") || "";
 
 export class ApiError extends Error {}
@@ -28,7 +29,15 @@ async function send(method, path, body) {
 }
 
 export const getState = (rows = true) => call("GET", `/api/state${rows ? "" : "?rows=0"}`);
-export const edit = (op, rows = true) => call("POST", `/api/edit${rows ? "" : "?rows=0"}`, op);
+// A drag step's answer comes with its control points packed (exact doubles in base64, far
+// cheaper than JSON numbers for thousands of them); unpacked here into the surface contract.
+export const edit = async (op, rows = true) => {
+  const drag = op.phase === "drag";
+  const st = await call("POST", `/api/edit${rows ? "" : "?rows=0"}${drag ? (rows ? "?" : "&") + "pack=1" : ""}`, op);
+  if (st.surface && st.surface.control_points_f64) unpack(st.surface);
+  return st;
+};
+
 export const undo = () => call("POST", "/api/undo", {});
 export const redo = () => call("POST", "/api/redo", {});
 export const setOptions = (o) => call("POST", "/api/options", o);

@@ -99,8 +99,8 @@ struct EditorServer::Impl {
     return f;
   }
 
-  json state(bool with_rows) {
-    json j = state_json(session, with_rows);
+  json state(bool with_rows, bool packed = false) {
+    json j = state_json(session, with_rows, packed);
     j["input"] = config.input;
     j["exports"] = formats();
     j["saved"] = saved_once;

@@ -38,12 +38,14 @@ void EditorServer::Impl::session_routes() {
     }
     const bool drag = body.value("phase", json()) == "drag";
     const bool rest = body.value("phase", json()) == "rest";
+    // ?pack=1: the control points as packed doubles (api_json.h), e.g. for a drag's steps.
+    const bool packed = req.has_param("pack") && req.get_param_value("pack") == "1";
     if (drag) search.cancel();  // a full search at rest under way is stale now
     guarded(
         res,
         [&] {
           if (ticket && drag_steps.overtaken(key, *ticket, seq)) {  // a newer step came: skip this
-            json j = state(false);
+            json j = state(false, packed);
             j["skipped"] = true;
             reply(res, 200, j);
             return;
@@ -53,14 +55,14 @@ void EditorServer::Impl::session_routes() {
           } catch (const Error& e) {
             if (!rest || e.code() != ErrorCode::kCancelled) throw;
             search.dropped("the full search at rest");  // the drag goes on from its quick state
-            json j = state(false);
+            json j = state(false, packed);
             j["skipped"] = true;
             j["cancelled"] = true;
             reply(res, 200, j);
             return;
           }
           const bool rows = !drag && !(req.has_param("rows") && req.get_param_value("rows") == "0");
-          json j = state(rows);
+          json j = state(rows, packed);
           j["skipped"] = false;
           reply(res, 200, j);
         },
