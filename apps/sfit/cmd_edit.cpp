@@ -79,6 +79,8 @@ int run_edit(const EditArgs& a) {
       p.line = first_line[static_cast<std::size_t>(p.row)] + std::max(0L, p.point);
     throw Error(e.code(), e.message(), p, e.values());
   }
+  if (const std::string why = server->best_effort(); !why.empty())
+    say("warning: no surface within T (" + why + "); the editor shows the best found");
   const bool clean = server::serve_until_signal(*server, [&] {
     std::fprintf(stderr, "sfit: editing %s at %s\n", a.input.c_str(), server->url().c_str());
     std::fflush(stderr);

@@ -1,9 +1,23 @@
 // The editor's JSON API (docs/editor.md), with the token from the page's address.
+import { unpack } from "./pack.js";
 const token = new URLSearchParams(location.search).get("token") || "";
 
 export class ApiError extends Error {}
 
+// Requests that may run a full search (all but drag steps and the light calls): while one is
+// out, the page shows the search's progress (GET /api/progress).
+let full = 0;
+export const fullInFlight = () => full;
+const light = (path, body) => path.startsWith("/api/progress") || path === "/api/cancel" ||
+  (path.startsWith("/api/state") || path === "/api/options-table") || (body && body.phase === "drag");
+
 export async function call(method, path, body) {
+  const counted = !light(path, body);
+  if (counted) full++;
+  try { return await send(method, path, body); } finally { if (counted) full--; }
+}
+
+async function send(method, path, body) {
   const res = await fetch(path, {
     method,
     headers: { "X-Sfit-Token": token, "Content-Type": "application/json" },
@@ -15,7 +29,15 @@ export async function call(method, path, body) {
 }
 
 export const getState = (rows = true) => call("GET", `/api/state${rows ? "" : "?rows=0"}`);
-export const edit = (op, rows = true) => call("POST", `/api/edit${rows ? "" : "?rows=0"}`, op);
+// A drag step's answer comes with its control points packed (exact doubles in base64, far
+// cheaper than JSON numbers for thousands of them); unpacked here into the surface contract.
+export const edit = async (op, rows = true) => {
+  const drag = op.phase === "drag";
+  const st = await call("POST", `/api/edit${rows ? "" : "?rows=0"}${drag ? (rows ? "?" : "&") + "pack=1" : ""}`, op);
+  if (st.surface && st.surface.control_points_f64) unpack(st.surface);
+  return st;
+};
+
 export const undo = () => call("POST", "/api/undo", {});
 export const redo = () => call("POST", "/api/redo", {});
 export const setOptions = (o) => call("POST", "/api/options", o);
@@ -25,3 +47,5 @@ export const exportBeside = (format) => call("POST", "/api/export", { format });
 export const downloadUrl = (format) =>
   `/api/export?format=${encodeURIComponent(format)}&token=${encodeURIComponent(token)}`;
 export const search = (o) => call("POST", "/api/search", o || {});
+export const progress = () => call("GET", "/api/progress");
+export const cancel = () => call("POST", "/api/cancel", {});

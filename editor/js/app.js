@@ -37,6 +37,7 @@ function applyState(st, job) {
   if (st.rows) panel.showOptions();
   if (st.final && !st.dragging && st.rows) showCountChange(st);
   hook.state = st;
+  hook.shown.push({ version: st.version, final: st.final, t: performance.now() });
   hook.applyMs = performance.now() - t0;
   view.redraw();
   if (job && job.t !== undefined)
@@ -47,7 +48,7 @@ function applyState(st, job) {
 
 // Calm sculpting: the count change of a final surface is shown (before -> after); with the
 // hold on, the full search's answer for the current rows is shown beside the held surface.
-let searchSeq = 0;
+let searchSeq = 0, searching = false;
 async function showCountChange(st) {
   const now = { counts: countsOf(st), rule: st.report.parameters };
   const before = lastFinal;
@@ -58,8 +59,14 @@ async function showCountChange(st) {
     const mine = ++searchSeq;
     el.textContent = `held at ${now.counts} (${now.rule}); searching for the fewest…`;
     try {
-      const r = await api.search({ parameters: S.ruleBeforeHold || "auto" });
+      searching = true;
+      const r = await api.search({ parameters: S.ruleBeforeHold || "auto" }).finally(() => { searching = false; });
       if (mine !== searchSeq) return;
+      if (r.cancelled) {  // a drag made it stale; the drag's final surface searches again
+        hook.dropped.push({ phase: "search" });
+        el.textContent = `held at ${now.counts} (${now.rule}); the search was dropped (you moved the point)`;
+        return;
+      }
       el.textContent = `held at ${now.counts} (${now.rule}); the full search now gives ${r.counts[0]} × ${r.counts[1]} ` +
         `(${r.parameters}${r.within ? "" : ", not within T"}): release the hold to take it`;
       hook.search = r;
@@ -72,12 +79,24 @@ async function showCountChange(st) {
 }
 
 // ---- moves: one request in flight, the newest position waits, stale ones are dropped ------
-let inFlight = false, pending = null, seq = 0, restTimer = null;
+let inFlight = false, pending = null, seq = 0, restTimer = null, current = null;
 
-function queueMove(job) { pending = job; pump(); }
+// A drag step while a full search runs that it makes stale (the rest's, the hold's search):
+// the server drops that search (POST /api/cancel) rather than finish it and then replace it.
+function dropStaleSearch() {
+  if ((current && current.phase === "rest" && !current.cancelSent) || searching) {
+    if (current && current.phase === "rest") current.cancelSent = true;
+    api.cancel().catch(() => {});
+  }
+}
+function queueMove(job) {
+  pending = job;
+  if (job.phase === "drag") dropStaleSearch();
+  pump();
+}
 async function pump() {
   if (inFlight || !pending) return;
-  const job = pending; pending = null; inFlight = true;
+  const job = pending; pending = null; inFlight = true; current = job;
   job.sent = performance.now();
   let st = null;
   try {
@@ -87,11 +106,12 @@ async function pump() {
     st = await api.edit({ op: "move", row: job.row, index: job.index, to: job.to,
       phase: job.phase, seq }, job.phase !== "drag");
     job.received = performance.now();
+    if (st.cancelled) hook.dropped.push({ phase: job.phase, version: st.version });
   } catch (e) {
     panel.message(e.message);
     if (job.phase !== "drag") refresh();
   }
-  inFlight = false;
+  inFlight = false; current = null;
   view.redraw();
   // The newest position goes out at once, while this answer is drawn.
   if (pending) pump();
@@ -106,6 +126,25 @@ async function pump() {
     }, hook.restMs);
   }
 }
+
+// The progress of a full search under way (phase, pairs tried, best so far), polled while a
+// request that may run one is out.
+let progressBusy = false;
+setInterval(async () => {
+  const el = $("progress");
+  if (!api.fullInFlight() || progressBusy) { if (!api.fullInFlight()) el.style.display = "none"; return; }
+  progressBusy = true;
+  try {
+    const p = await api.progress();
+    if (p.running && api.fullInFlight()) {
+      el.textContent = `full search: ${p.phase}${p.total ? ` ${p.done}/${p.total}` : ""}, ${p.pairs_tried} pairs tried` +
+        (p.best ? `, best so far ${p.best[0]} × ${p.best[1]}` : "") + `, ${p.seconds.toFixed(1)} s`;
+      el.style.display = "block";
+      hook.progress.push(p);
+    }
+  } catch (_) { /* the next request says what is wrong */ }
+  progressBusy = false;
+}, 150);
 
 async function refresh() { applyState(await api.getState(true)); }
 

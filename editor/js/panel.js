@@ -37,14 +37,19 @@ export function showReport() {
   setText(c[6], `${r.parameters}; ${r.solves} solves, ${(1000 * r.seconds).toFixed(2)} ms`);
   const s = $("status");
   const held = st.options.hold ? " (counts and rule held)" : "";
-  if (!d.within && !st.final) {
+  if (st.best_effort && st.final) {
+    // No surface within T was found: the best one found is shown, to fix the points or T.
+    setClass(s, "status bad");
+    setText(s, `no surface within T found (${st.best_effort}): the best found is shown` +
+      (d.within ? "; change the points, T or the degree" : `, NOT within T at ${S.overCount || "some"} points (ringed magenta, listed below)`));
+  } else if (!d.within && !st.final) {
     setClass(s, "status quick over");
     setText(s, `quick refit at the current counts, every point checked: ${used}% of T, over T at the worst point; ` +
       "the final fit follows when you pause");
   } else if (!d.within) {
     setClass(s, "status bad");
     setText(s, `NOT within T at ${S.overCount || "some"} points (ringed magenta; the worst red)` + held +
-      (st.options.hold ? ": release the hold, raise T or move the points" : ": raise T or move the ringed points"));
+      (st.options.hold ? ": release the hold, raise T or move the points" : ": raise T or move the ringed points, listed below"));
   } else if (st.final) {
     setClass(s, "status");
     setText(s, st.options.hold ? `final surface at the held counts and rule, every point checked (max ${used}% of T)`
@@ -53,12 +58,34 @@ export function showReport() {
     setClass(s, "status quick");
     setText(s, `quick refit at the current counts (every point checked, max ${used}% of T); the final one follows when you pause`);
   }
+  if (st.rows) showFailing();
   setText($("depths"), `${st.undo} undo, ${st.redo} redo`);
   const lock = $("lock");
   setText(lock, st.read_only ? `read-only: ${st.lock}` : st.lock || "");
   lock.style.display = st.lock ? "block" : "none";
   $("save").disabled = !!st.read_only;
   $("save").title = st.read_only ? st.lock : "";
+}
+
+// The points over T (final surface), worst first: each a button that selects the point.
+const FAILING_SHOWN = 12;
+function showFailing() {
+  const el = $("failing");
+  const over = [];
+  if (S.state.final) S.dev.forEach((r, j) => r && r.forEach((x, i) => { if (x > 1) over.push({ row: j, index: i, x }); }));
+  el.style.display = over.length ? "block" : "none";
+  if (!over.length) return el.replaceChildren();
+  over.sort((a, b) => b.x - a.x);
+  const head = document.createElement("div");
+  head.textContent = `${over.length} point${over.length > 1 ? "s" : ""} over T` + (over.length > FAILING_SHOWN ? ` (the ${FAILING_SHOWN} worst)` : "") + ":";
+  el.replaceChildren(head, ...over.slice(0, FAILING_SHOWN).map((f) => {
+    const b = document.createElement("button");
+    b.className = "failpoint";
+    b.dataset.row = f.row; b.dataset.index = f.index;
+    b.textContent = `row ${f.row}, point ${f.index}: ${(100 * f.x).toFixed(0)}% of T`;
+    b.addEventListener("click", () => { S.selected = { row: f.row, index: f.index }; showSelection(); updateMarkers(); redraw(); });
+    return b;
+  }));
 }
 
 // ---- units and T -------------------------------------------------------------------------

@@ -5,7 +5,10 @@ export const $ = (id) => document.getElementById(id);
 
 // For tests and benchmarks: the last state, frames drawn, move-to-frame latencies, the
 // times of the drag's mouse events; restMs: how long the hand rests before the full fit.
-export const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], moves: [], ready: false, restMs: 250 });
+// progress: the full searches' progress seen; dropped: the searches a drag made stale;
+// shown: every state drawn (version, final, time).
+export const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], moves: [], ready: false, restMs: 250,
+  progress: [], dropped: [], shown: [] });
 
 export const S = {
   state: null,      // the last state from the server

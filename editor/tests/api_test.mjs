@@ -8,6 +8,7 @@ import { join } from "node:path";
 import { startEditor } from "./browser.mjs";
 import { client, request } from "./api.mjs";
 import { evaluate } from "../js/bspline.js";
+import { unpack } from "../js/pack.js";
 
 const SFIT = process.env.SFIT_CLI;
 const EXAMPLES = process.env.SFIT_EXAMPLES;
@@ -199,12 +200,20 @@ test("a drag is one undo step; its quick refits are not final; stale drag steps 
     assert.equal(r.json.checked, true, "a quick refit checks every point too");
     assert.equal(r.json.rows, undefined, "drag steps omit the rows");
   }
+  // ?pack=1: the same surface with its control points packed, exactly (the page's drag steps).
+  const packed = await api.post("/api/edit?rows=0&pack=1", { op: "move", row: 6, index: 4, to: [p[0], p[1], p[2] + 0.5], phase: "drag", seq: 110 });
+  assert.equal(packed.json.surface.control_points, undefined);
+  assert.deepEqual(packed.json.surface.control_points_shape, [packed.json.report.control_points[0], packed.json.report.control_points[1]]);
+  const same = (await api.get("/api/state?rows=0")).json;  // the same quick state, unpacked
+  assert.equal(same.version, packed.json.version);
+  assert.deepEqual(unpack(packed.json.surface), same.surface, "packed control points are exact");
+  r = packed;
   // A step numbered below one already answered (a reloaded page counting from 1 again) is
   // refitted: only a step that a newer one overtook while it waited is skipped
   // (editor_server_test, DragSteps).
   const again = await api.post("/api/edit", { op: "move", row: 6, index: 4, to: [p[0], p[1], p[2] + 0.45], phase: "drag", seq: 101 });
   assert.equal(again.json.skipped, false);
-  assert.equal(again.json.version, r.json.version + 1);
+  assert.equal(again.json.version, r.json.version + 1);  // r: the packed step
   r = await api.post("/api/edit", { op: "move", row: 6, index: 4, to: [p[0], p[1], p[2] + 0.5], phase: "rest", seq: 106 });
   assert.equal(r.json.final, true);
   assert.equal(r.json.dragging, true);

@@ -7,7 +7,7 @@ import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
 import { join } from "node:path";
-import { skipUnlessChromium, loadPuppeteer, startEditor, launch } from "./browser.mjs";
+import { skipUnlessChromium, loadPuppeteer, startEditor, launch, openPage } from "./browser.mjs";
 import { client } from "./api.mjs";
 import { evaluate } from "../js/bspline.js";
 
@@ -25,13 +25,7 @@ before(async () => {
   api = client(ed);
   initial = (await api.get("/api/state")).json;
   browser = await launch(puppeteer);
-  page = await browser.newPage();
-  page.on("pageerror", (e) => errors.push(e.message));
-  await page.goto(ed.url);
-  await page.waitForFunction(() => (window.sfitEditor && window.sfitEditor.ready) || window.sfitEditorError,
-    { timeout: 60000 });
-  const failed = await page.evaluate(() => window.sfitEditorError || null);
-  if (failed) throw new Error("the page did not start: " + failed);
+  page = await openPage(browser, ed.url, errors);
 });
 after(async () => {
   if (browser) await browser.close();

@@ -1,7 +1,9 @@
 #include "sfit/incremental.h"
 
+#include <optional>
 #include <string>
 
+#include "fit_monitor.h"
 #include "sfit/error.h"
 #include "surface_fitter.h"
 
@@ -24,11 +26,21 @@ Rows with_row(const Rows& rows, std::size_t row, std::span<const Point> points) 
   return out;
 }
 
+// Runs `f` with the progress and cancel of `o` watched (FitOptions::progress, ::cancel), as
+// fit_surface() does.
+template <class F>
+FitResult monitored(const FitOptions& o, F&& f) {
+  std::optional<detail::FitMonitor> monitor;
+  if (detail::FitMonitor::wanted(o) && !detail::current_monitor()) monitor.emplace(o);
+  const detail::MonitorScope scope(monitor ? &*monitor : detail::current_monitor());
+  return f();
+}
+
 }  // namespace
 
 IncrementalFit::IncrementalFit(Rows rows, FitOptions options)
     : rows_(std::move(rows)), fitter_(std::make_unique<detail::SurfaceFitter>(std::move(options))) {
-  result_ = fitter_->fit(rows_);
+  result_ = monitored(fitter_->options(), [&] { return fitter_->fit(rows_); });
 }
 
 IncrementalFit::~IncrementalFit() = default;
@@ -44,7 +56,8 @@ const FitResult& IncrementalFit::apply(Rows edited, std::size_t row) {
   if (rows_.weighted())
     throw Error(ErrorCode::kUsage, "edits of weighted rows are not supported yet",
                 Place{.option = "weights"});
-  FitResult r = fitter_->update(edited, {row});  // throws before touching the state
+  // Throws before touching the state (a cancelled edit too).
+  FitResult r = monitored(fitter_->options(), [&] { return fitter_->update(edited, {row}); });
   rows_ = std::move(edited);
   result_ = std::move(r);
   return result_;

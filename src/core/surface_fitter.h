@@ -26,6 +26,7 @@ class SurfaceFitter {
   /// The whole method on `rows` (fit_surface()); for FitMethod::kSurface the surface search
   /// (fit_surface_search(); update() then refits in full: the same result as fit_surface()).
   FitResult fit(const Rows& rows);
+  const FitOptions& options() const { return o_; }
   /// The same result as fit(rows) after the rows in `changed` were edited (the number of rows
   /// unchanged), refitting only what the edit touches: the edited rows, later rows of their
   /// block whose starting count changed, and their re-representations; the transverse stage

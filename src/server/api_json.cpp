@@ -1,5 +1,6 @@
 #include "api_json.h"
 
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -232,7 +233,49 @@ void apply_edit(Session& s, const json& r) {
   }
 }
 
-json state_json(const Session& s, bool with_rows) {
+namespace {
+
+std::string base64(const unsigned char* data, std::size_t n) {
+  static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((n + 2) / 3 * 4);
+  for (std::size_t i = 0; i < n; i += 3) {
+    const unsigned v =
+        (data[i] << 16) | ((i + 1 < n ? data[i + 1] : 0) << 8) | (i + 2 < n ? data[i + 2] : 0);
+    out += abc[(v >> 18) & 63];
+    out += abc[(v >> 12) & 63];
+    out += i + 1 < n ? abc[(v >> 6) & 63] : '=';
+    out += i + 2 < n ? abc[v & 63] : '=';
+  }
+  return out;
+}
+
+// The surface contract with the control points packed (state_json()).
+json packed_surface_json(const Surface& s) {
+  static_assert(std::endian::native == std::endian::little, "packed doubles are little-endian");
+  json j;
+  j["type"] = "bspline_surface";
+  j["degree"] = {s.degree_u, s.degree_v};
+  j["periodic"] = {s.periodic_u, s.periodic_v};
+  j["knots_u"] = s.full_knots_u();
+  j["knots_v"] = s.full_knots_v();
+  const int fu = s.full_count_u(), fv = s.full_count_v();
+  std::vector<double> xyz;
+  xyz.reserve(static_cast<std::size_t>(fu) * fv * 3);
+  for (int i = 0; i < fu; ++i)
+    for (int l = 0; l < fv; ++l) {
+      const Point p = s.full_at(i, l);
+      xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
+    }
+  j["control_points_shape"] = {fu, fv};
+  j["control_points_f64"] =
+      base64(reinterpret_cast<const unsigned char*>(xyz.data()), xyz.size() * sizeof(double));
+  return j;
+}
+
+}  // namespace
+
+json state_json(const Session& s, bool with_rows, bool packed) {
   const FitResult& fit = s.shown();
   const Rows& rows = s.shown_rows();
   const FitReport& r = fit.report;
@@ -245,7 +288,7 @@ json state_json(const Session& s, bool with_rows) {
   j["final"] = s.final();
   j["dragging"] = s.dragging();
   j["checked"] = r.points == rows.total_points();
-  j["surface"] = io::surface_to_json(fit.surface);
+  j["surface"] = packed ? packed_surface_json(fit.surface) : io::surface_to_json(fit.surface);
   j["report"] = io::report_to_json(r);
   j["deviation"] = {{"max", point_json(r.max_deviation)},
                     {"tolerance", point_json(r.tolerance)},
@@ -255,6 +298,9 @@ json state_json(const Session& s, bool with_rows) {
   j["undo"] = s.undo_depth();
   j["redo"] = s.redo_depth();
   j["rows_refitted"] = s.rows_refitted();
+  // No surface within T was found (the file opened, or an edit left it, so): the best one
+  // found is shown, and why the search failed.
+  j["best_effort"] = s.best_effort().empty() ? json(nullptr) : json(s.best_effort());
   j["points"] = rows.total_points();
   if (with_rows) {
     json rj = json::array();

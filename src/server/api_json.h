@@ -13,7 +13,11 @@ namespace sfit::server {
 
 /// The state: rows (optional, they are the bulk), surface (the JSON surface contract), report,
 /// whether the surface is final, the deviation against T, options, undo and redo depths.
-nlohmann::json state_json(const Session& session, bool with_rows);
+/// `packed`: the surface's control points as "control_points_f64" (base64 of the little-endian
+/// doubles, x y z of each in the order of "control_points") and "control_points_shape"
+/// [rows, columns] instead of the nested array: exact, and far cheaper to write and read for
+/// a drag step of a surface with thousands of control points.
+nlohmann::json state_json(const Session& session, bool with_rows, bool packed = false);
 
 /// The fit options as the API shows and takes them.
 nlohmann::json options_json(const FitOptions& o);

@@ -1,5 +1,7 @@
 #include "drag_watch.h"
 
+#include <cstdio>
+
 namespace sfit::server {
 
 using Clock = std::chrono::steady_clock;
@@ -41,6 +43,9 @@ void DragWatch::run() {
       // finish_drag() dropped a drag the full fit refuses (the rows as before it)
     }
     ++ended_;
+    std::fprintf(stderr, "sfit: a drag without an edit for %.1f s ended at the full fit\n",
+                 std::chrono::duration<double>(idle).count());
+    std::fflush(stderr);
   }
 }
 

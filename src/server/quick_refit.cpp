@@ -5,6 +5,7 @@ namespace sfit::server {
 FitOptions quick_refit_options(const FitOptions& full, const FitReport& last) {
   FitOptions q = full;
   q.progress = {};
+  q.cancel = nullptr;  // a drag step's refit is never the stale search a newer step drops
   q.parametrization = last.parametrization;  // the rule the full fit picked, not four fits
   if (last.method == FitMethod::kSurface) {
     // The surface search's pair, solved once by least squares: no search (FitOptions::counts)

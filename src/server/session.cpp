@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "best_effort.h"
 #include "quick_refit.h"
 #include "sfit/error.h"
 
@@ -23,12 +24,42 @@ Rows edited_rows(const Rows& rows, std::size_t row, const std::vector<Point>* in
   return out;
 }
 
+// `rows` with row `row` replaced by `points`.
+Rows with_row(const Rows& rows, std::size_t row, const std::vector<Point>& points) {
+  Rows out;
+  out.reserve(rows.total_points() + points.size(), rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) out.add_row(j == row ? points : rows[j]);
+  return out;
+}
+
 }  // namespace
 
-Session::Session(Rows rows, FitOptions options)
-    : options_(std::move(options)),
-      fit_(std::make_unique<IncrementalFit>(std::move(rows), options_)) {
+Session::Session(Rows rows, FitOptions options) : options_(std::move(options)) {
+  refit(std::move(rows), options_);
+}
+
+void Session::refit(Rows rows, const FitOptions& options) {
+  std::string why;
+  fit_ = fit_or_best_effort(std::move(rows), options, why);
+  best_effort_ = std::move(why);
   rows_refitted_ = fit_->rows_refitted();
+}
+
+void Session::set_row(std::size_t row, const std::vector<Point>& points) {
+  if (best_effort_.empty()) {
+    try {
+      fit_->replace_row(row, points);
+      rows_refitted_ = fit_->rows_refitted();
+      return;
+    } catch (const Error& e) {
+      if (e.code() != ErrorCode::kToleranceNotMet) throw;
+    }
+  }
+  if (points.empty()) no_such("a row keeps at least one point", row);
+  if (fit_->rows().weighted())  // as IncrementalFit's edits: refused, not weights dropped
+    throw Error(ErrorCode::kUsage, "edits of weighted rows are not supported yet",
+                Place{.option = "weights"});
+  refit(with_row(fit_->rows(), row, points), options_);
 }
 
 Session::~Session() = default;
@@ -59,9 +90,9 @@ void Session::move(std::size_t row, std::size_t index, const Point& to, MovePhas
   const Rows& rows = fit_->rows();
   if (row >= rows.size() || index >= rows[row].size()) no_such("no such point to move", row, index);
   if (phase == MovePhase::kOnce) {
-    std::vector<Point> before = row_points(row);
-    fit_->move_point(row, index, to);
-    rows_refitted_ = fit_->rows_refitted();
+    std::vector<Point> before = row_points(row), after = before;
+    after[index] = to;
+    set_row(row, after);
     commit(Change{.kind = Change::Kind::kRow,
                   .row = row,
                   .before = std::move(before),
@@ -87,8 +118,9 @@ void Session::move(std::size_t row, std::size_t index, const Point& to, MovePhas
   }
   // kRest and kEnd: the full fit at the hand's position (the quick state follows it too).
   if (fit_->rows()[row][index] != to) {
-    fit_->move_point(row, index, to);
-    rows_refitted_ = fit_->rows_refitted();
+    std::vector<Point> after = row_points(row);
+    after[index] = to;
+    set_row(row, after);
   }
   if (d.quick->rows()[row][index] != to) d.quick->move_point(row, index, to);
   d.final = true;
@@ -103,11 +135,12 @@ void Session::finish_drag() {
   const Point to = d.quick->rows()[d.row][d.index];
   if (fit_->rows()[d.row][d.index] != to) {
     try {
-      fit_->move_point(d.row, d.index, to);
-      rows_refitted_ = fit_->rows_refitted();
+      std::vector<Point> after = row_points(d.row);
+      after[d.index] = to;
+      set_row(d.row, after);
     } catch (...) {
       // The full fit refuses where the quick one took it: the drag is dropped.
-      if (row_points(d.row) != d.before) fit_->replace_row(d.row, d.before);
+      if (row_points(d.row) != d.before) set_row(d.row, d.before);
       ++version_;
       throw;
     }
@@ -126,9 +159,10 @@ void Session::finish_drag() {
 void Session::insert_point(std::size_t row, std::size_t index, const Point& p) {
   finish_drag();
   if (row >= rows().size()) no_such("no such row to insert a point in", row);
-  std::vector<Point> before = row_points(row);
-  fit_->insert_point(row, index, p);
-  rows_refitted_ = fit_->rows_refitted();
+  std::vector<Point> before = row_points(row), after = before;
+  if (index > after.size()) no_such("no such place to insert a point", row, index);
+  after.insert(after.begin() + static_cast<std::ptrdiff_t>(index), p);
+  set_row(row, after);
   commit(Change{.kind = Change::Kind::kRow,
                 .row = row,
                 .before = std::move(before),
@@ -138,9 +172,11 @@ void Session::insert_point(std::size_t row, std::size_t index, const Point& p) {
 void Session::delete_point(std::size_t row, std::size_t index) {
   finish_drag();
   if (row >= rows().size()) no_such("no such row to delete a point from", row);
-  std::vector<Point> before = row_points(row);
-  fit_->erase_point(row, index);
-  rows_refitted_ = fit_->rows_refitted();
+  std::vector<Point> before = row_points(row), after = before;
+  if (index >= after.size()) no_such("no such point to delete", row, index);
+  if (after.size() == 1) no_such("a row keeps at least one point", row, index);
+  after.erase(after.begin() + static_cast<std::ptrdiff_t>(index));
+  set_row(row, after);
   commit(Change{.kind = Change::Kind::kRow,
                 .row = row,
                 .before = std::move(before),
@@ -196,8 +232,7 @@ void Session::apply(const Change& c, bool forward) {
   using K = Change::Kind;
   switch (c.kind) {
     case K::kRow:
-      fit_->replace_row(c.row, forward ? c.after : c.before);
-      rows_refitted_ = fit_->rows_refitted();
+      set_row(c.row, forward ? c.after : c.before);
       return;
     case K::kInsertRow:
     case K::kDeleteRow: {
@@ -206,18 +241,13 @@ void Session::apply(const Change& c, bool forward) {
                     Place{.option = "weights"});
       const bool insert = (c.kind == K::kInsertRow) == forward;
       const std::vector<Point>& points = c.kind == K::kInsertRow ? c.after : c.before;
-      auto next = std::make_unique<IncrementalFit>(
-          edited_rows(fit_->rows(), c.row, insert ? &points : nullptr), options_);
-      fit_ = std::move(next);
-      rows_refitted_ = fit_->rows_refitted();
+      refit(edited_rows(fit_->rows(), c.row, insert ? &points : nullptr), options_);
       return;
     }
     case K::kOptions: {
       const FitOptions& o = forward ? c.options_after : c.options_before;
-      auto next = std::make_unique<IncrementalFit>(fit_->rows(), o);
-      fit_ = std::move(next);
+      refit(fit_->rows(), o);
       options_ = o;
-      rows_refitted_ = fit_->rows_refitted();
       return;
     }
   }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "sfit/incremental.h"
@@ -74,6 +75,10 @@ class Session {
   long version() const { return version_; }
   /// Rows whose curve stage the last refit redid (rows().size() for a full fit).
   std::size_t rows_refitted() const { return rows_refitted_; }
+  /// Why the full fit (result()) is only the best surface found: the count search found none
+  /// within T (its message; best_effort.h); empty when the full fit is the search's. Every
+  /// edit tries the search again.
+  const std::string& best_effort() const { return best_effort_; }
 
  private:
   struct Drag {
@@ -83,6 +88,10 @@ class Session {
     bool final = false;  // the last step was a rest: fit_ is at the current position
   };
   void apply(const Change& c, bool forward);
+  // Row `row` becomes `points`: the incremental refit, or with a best-effort fit a full one.
+  void set_row(std::size_t row, const std::vector<Point>& points);
+  // fit_ becomes the fit of `rows` with `options` (the best effort where none holds T).
+  void refit(Rows rows, const FitOptions& options);
   void commit(Change c);
   std::vector<Point> row_points(std::size_t row) const;
 
@@ -92,6 +101,7 @@ class Session {
   std::deque<Change> undo_, redo_;
   long version_ = 0;
   std::size_t rows_refitted_ = 0;
+  std::string best_effort_;
 };
 
 }  // namespace sfit::server

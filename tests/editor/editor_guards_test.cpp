@@ -72,11 +72,15 @@ TEST(Hold, KeepsTheCountsAndTheRuleThroughEditsUntilReleased) {
   EXPECT_TRUE(held(s.options()));
   const Point p = s.rows()[5][4];
   const double far = 0.05 * (s.rows()[5][5] - s.rows()[5][3]).norm() + 2.0;
+  const Surface& s0 = s.result().surface;
+  const std::vector<double> knots_u = s0.full_knots_u(), knots_v = s0.full_knots_v();
   for (MovePhase ph : {MovePhase::kDrag, MovePhase::kRest, MovePhase::kEnd}) {
     s.move(5, 4, p + Point(0, far, far), ph);
     EXPECT_EQ(s.shown().report.count_u, r0.count_u);
     EXPECT_EQ(s.shown().report.count_v, r0.count_v);
     EXPECT_EQ(s.shown().report.parametrization, r0.parametrization);
+    EXPECT_EQ(s.shown().surface.full_knots_u(), knots_u);  // the knots too
+    EXPECT_EQ(s.shown().surface.full_knots_v(), knots_v);
   }
   // Another option keeps the hold; the search's answer leaves the session alone.
   s.set_options(options_with_hold(nlohmann::json{{"search", "linear"}}, s));

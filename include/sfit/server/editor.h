@@ -44,6 +44,9 @@ class EditorServer {
   const std::string& token() const;
   /// http://127.0.0.1:PORT/?token=TOKEN
   std::string url() const;
+  /// Why the surface shown is only the best found (no surface within T; the page says so
+  /// too), or "" when the count search found one.
+  std::string best_effort() const;
   /// Serves until stop() (thread-safe, callable from any thread); returns once every
   /// request under way has ended.
   void run();

@@ -4,12 +4,14 @@
 // (10^4 points; bench/synthetic.h's terrain). Drag steps that a newer one
 // overtook are skipped, not shown (latest wins), so only the shown ones have a latency of
 // their own; every mouse event is also timed to the first frame showing it or a newer step.
-// Usage (after building):
-//   SFIT_CLI=build/apps/sfit/sfit node editor/tests/bench_browser.mjs [rows] [points per row]
+// Reports p50/p95, the moves drawn and superseded, and the machine's load (1-minute load
+// average, at the start and the end). A benchmark, not a test: nothing is asserted.
+// Usage (after building; editor/node_modules from `npm ci`):
+//   SFIT_CLI=build/apps/sfit/sfit nice node bench/editor_latency.mjs [rows] [points per row]
 import { writeFileSync, mkdtempSync, rmSync } from "node:fs";
-import { tmpdir } from "node:os";
+import { tmpdir, loadavg, cpus } from "node:os";
 import { join } from "node:path";
-import { skipUnlessChromium, loadPuppeteer, startEditor, launch } from "./browser.mjs";
+import { skipUnlessChromium, loadPuppeteer, startEditor, launch } from "../editor/tests/browser.mjs";
 
 skipUnlessChromium();
 const SFIT = process.env.SFIT_CLI;
@@ -27,6 +29,7 @@ for (let j = 0; j < M; j++) {
 }
 writeFileSync(file, text);
 
+const loadStart = loadavg()[0];
 const compositing = process.env.SFIT_CHROMIUM_GL_COMPOSITING === "1" ? "GL compositing on SwiftShader" : "software compositing";
 const ed = await startEditor(SFIT, file);
 const puppeteer = await loadPuppeteer();
@@ -43,7 +46,7 @@ const pctl = (xs, q) => {
 };
 const results = [];
 for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(M / 3), Math.floor(N / 4)]]) {
-  await page.evaluate(() => { window.sfitEditor.latencies = []; window.sfitEditor.moves = []; });
+  await page.evaluate(() => { window.sfitEditor.latencies = []; window.sfitEditor.moves = []; window.sfitEditor.dropped = []; });
   const s = await page.evaluate((r, i) => window.sfitEditor.screenOf(r, i), row, index);
   await page.mouse.click(s.x, s.y);  // select, then drag
   await page.waitForFunction(() => window.sfitEditor.selected() !== null);
@@ -58,10 +61,17 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging,
     { timeout: 120000 });
   await page.evaluate(() => window.sfitEditor.nextFrame());  // the last latency recorded
-  const { lat, times } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies, times: window.sfitEditor.moves }));
-  results.push({ moves, lat, times });
+  const { lat, times, dropped, counts } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
+    times: window.sfitEditor.moves, dropped: window.sfitEditor.dropped.length, counts: window.sfitEditor.state.report.control_points }));
+  results.push({ moves, lat, times, dropped, counts });
 }
 const dragLat = results.flatMap((r) => r.lat.filter((l) => l.phase === "drag"));
+results.forEach((r, k) => {
+  const d = r.lat.filter((l) => l.phase === "drag");
+  console.log(`  drag ${k + 1} (counts at its start ${k ? results[k - 1].counts.join(" x ") : "of the first fit"}): ` +
+    `p50 ${pctl(d.map((l) => l.ms), 0.5).toFixed(1)} ms, request ${pctl(d.map((l) => l.request), 0.5).toFixed(1)} ms ` +
+    `(refit ${pctl(d.map((l) => l.server), 0.5).toFixed(1)}), drawn ${d.length} of ${r.moves}`);
+});
 const drag = dragLat.map((l) => l.ms);
 const fin = results.flatMap((r) => r.lat.filter((l) => l.final).map((l) => l.ms));
 // Every mouse event, overtaken ones too: to the first frame showing its step or a newer one.
@@ -78,6 +88,11 @@ console.log(`  median split: waiting for the previous request ${med("wait").toFi
   `(waiting for the frame before ${med("slot").toFixed(1)}, tessellation and buffers ${med("js").toFixed(1)}, drawing ${med("draw").toFixed(1)}, ` +
   `to the next animation frame ${med("show").toFixed(1)})`);
 const moves = results.reduce((s, r) => s + r.moves, 0);
+const loadEnd = loadavg()[0];
+console.log(`load average (1 min) ${loadStart.toFixed(2)} at the start, ${loadEnd.toFixed(2)} at the end, ${cpus().length} cores; ` +
+  `moves drawn ${drag.length}, superseded by a newer one ${moves - drag.length} (of ${moves}); ` +
+  `full searches while the hand rested ${results.reduce((s, r) => s + r.lat.filter((l) => l.phase === "rest").length, 0)} drawn, ` +
+  `${results.reduce((s, r) => s + r.dropped, 0)} dropped as the hand moved on; counts after each drag ${results.map((r) => r.counts.join(" x ")).join(", ")}`);
 console.log(`points ${M * N} (${compositing}): mouse event -> new frame shown, quick (drag) p50 ${pctl(drag, 0.5).toFixed(1)} ms, ` +
   `p95 ${pctl(drag, 0.95).toFixed(1)} ms (${drag.length} of ${moves} moves shown, the rest overtaken); ` +
   `every mouse event to the first frame showing it or a newer step: p50 ${pctl(every, 0.5).toFixed(1)} ms, ` +
