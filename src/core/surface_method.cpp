@@ -296,6 +296,12 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
       int nu = found ? found->nu : base ? base->surface.count_u : 0;
       int nv = found ? found->nv : base ? base->surface.count_v : 0;
       if (!found && (!base || base->report.parametrization != rule)) nu = 0;  // none of the rule
+      // kAuto solves at most kLinfTries minimax pairs per rule, so its descent takes at most
+      // that many steps: where even those cannot go below the best, it is not started.
+      const long reach = std::min({static_cast<long>(nu - kLinfTries) * nv,
+                                   static_cast<long>(nu) * (nv - kLinfTries),
+                                   static_cast<long>(nu - 1) * (nv - 1)});
+      if (o.norm == FitNorm::kAuto && reach >= bound) nu = 0;
       if (nu > 0) {
         const auto [mu, mv] = descend(nu, nv, range, linf, worth);
         if (static_cast<long>(mu) * mv < static_cast<long>(nu) * nv) {
