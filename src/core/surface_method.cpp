@@ -166,17 +166,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   // (count_floor.h): a rule whose bound cannot beat the best, or that the sample's
   // rows are too short to reach, is not searched; where noise forces every rule to
   // interpolate the rows, no pair is searched at all.
-  bool forced = !interpolate;
-  long floored = 0;
-  std::vector<CountFloor> floors;
-  for (Parametrization rule : rules) {
-    floors.push_back(interpolate || (step > 1 && rule == Parametrization::kPaper)
-                         ? CountFloor{}
-                         : count_floor(fr.centred, os, rule, fr.roundoff));
-    forced = forced && (floors.back().forced || floors.back().nu == 0);
-  }
-  forced = forced &&
-           std::any_of(floors.begin(), floors.end(), [](const CountFloor& f) { return f.nu > 0; });
+  long floored = 0, forced_rules = 0;
   std::size_t longest = 0;
   for (std::size_t j = 0; j < rows.size(); ++j) longest = std::max(longest, rows[j].size());
   progress_phase("search", rules.size());
@@ -186,16 +176,17 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   for (Parametrization rule : rules) {
     if (rules_done > 0) progress_advance(rules_done);
     ++rules_done;
-    if (interpolate || forced) break;
+    if (interpolate) break;
     // Nothing below the bound can hold: the smallest pair is (degree + 1)^2.
     if (bound <= static_cast<long>(o.degree_u + 1) * (o.degree_v + 1)) break;
     // The paper's parameters depend on a row's length, so a sample of the row has others:
     // on large data that rule is the two-stage fit's alone.
     if (step > 1 && rule == Parametrization::kPaper) continue;
-    const CountFloor& floor = floors[rules_done - 1];
+    const CountFloor floor = count_floor(fr.centred, os, rule, fr.roundoff);
     if (static_cast<long>(floor.nu) * floor.nv >= bound ||
         (step > 1 && static_cast<std::size_t>(floor.nu) > longest / step + 2 + 16)) {
       ++floored;
+      forced_rules += floor.forced ? 1 : 0;
       searched.push_back(rule);  // looked at: its floor ruled it out
       continue;
     }
@@ -320,6 +311,8 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     }
   }
   progress_advance(rules.size());
+  const bool forced =
+      floored > 0 && forced_rules == floored && floored == static_cast<long>(searched.size());
   std::string deferred;
   if (defer_base) {
     if (best && static_cast<long>(best->nu) * best->nv <= lower) {
