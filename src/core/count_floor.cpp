@@ -78,13 +78,16 @@ CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization ru
 // it failed). A row with one outlier needs thousands of counts: 2 rows of 30000 points took
 // minutes at one solve per count, a fraction of a second now. Rows whose counts stay below
 // degree + 1 + kLowerBoundCounts (every data set of the tests) get the same bound as before.
-long sfit01_lower_bound(const Rows& rows, const FitOptions& o) {
+long sfit01_lower_bound(const Rows& rows, const FitOptions& o, long needed) {
   const double roundoff = kRoundoffRelative * bounding_box(rows).diagonal();
   CurveFitOptions co;
   co.degree = o.degree_u;
   co.periodic = o.closed_u;
   co.search = CountSearch::kLinear;
-  constexpr int kLowerBoundCounts = 256;
+  // The scan need not pass the count whose bound reaches `needed`: a row that fails below it
+  // already puts the bound there.
+  const long want = (needed + o.degree_v) / (o.degree_v + 1) - (o.degree_u + 1);
+  const int kLowerBoundCounts = static_cast<int>(std::clamp<long>(want, 1, 256));
   co.linear_limit = kLowerBoundCounts;
   for (int a = 0; a < 3; ++a)
     co.bound[a] = o.tolerance[a] > 0 ? std::max(0.5 * o.tolerance[a] * (1 - 1e-9), 0.5 * roundoff)

@@ -3,6 +3,8 @@
 // stages, and is not run (surface_method.cpp, docs/control-points.md). Private.
 #pragma once
 
+#include <climits>
+
 #include "sfit/parametrization.h"
 #include "sfit/rows.h"
 #include "sfit/surface_fit.h"
@@ -31,6 +33,8 @@ CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization ru
 /// A lower bound on the two-stage fit's nu x nv at the paper's rule: its nu is at least every
 /// row's count at the curve stage's budget T / 2, from 8 rows (surface_method.cpp defers the
 /// two stages on large data while the search beats it).
-long sfit01_lower_bound(const Rows& rows, const FitOptions& o);
+/// Each row's scan stops at the count whose bound reaches `needed` (where the bound is to be
+/// compared with a count of `needed`: the same verdict, fewer solves).
+long sfit01_lower_bound(const Rows& rows, const FitOptions& o, long needed = LONG_MAX);
 
 }  // namespace sfit::detail

@@ -138,11 +138,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
                           !(o.tolerance.array() == 0).all();
   std::optional<FitResult> base;
   long bound = LONG_MAX, lower = 0;
-  if (defer_base) {
-    progress_phase("lower bound", 1);
-    lower = sfit01_lower_bound(rows, o);
-    progress_advance(1);
-  } else {
+  if (!defer_base) {
     base = SurfaceFitter(o1).fit_aligned(rows, seam_offsets);
     if (base->report.within_tolerance) {
       bound = static_cast<long>(base->surface.count_u) * base->surface.count_v;
@@ -315,6 +311,11 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
       floored > 0 && forced_rules == floored && floored == static_cast<long>(searched.size());
   std::string deferred;
   if (defer_base) {
+    if (best) {
+      progress_phase("lower bound", 1);
+      lower = sfit01_lower_bound(rows, o, static_cast<long>(best->nu) * best->nv);
+      progress_advance(1);
+    }
     if (best && static_cast<long>(best->nu) * best->nv <= lower) {
       deferred = "; at most " + std::to_string(lower) +
                  ", a lower bound on sfit01's count, so sfit01 was not run";
