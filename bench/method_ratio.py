@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The default (--method surface) against the two stages alone (--method sfit01), same run.
 
-  bench/method_ratio.py [SFIT] [--reps N] [--sets DIR ...] [--large N]
+  bench/method_ratio.py [SFIT] [--reps N] [--sets DIR ...] [--large N]   (--sets alone: no sets)
 
 Every example set (examples/*.rows, closed flags as scripts/paper_table.py states them) at
 --tol-rel 1e-2, 1e-3 and 1e-4, each method in turn, median of N runs (default 5) of the fit
