@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/install-deps.sh >/dev/null
 cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DSFIT_BUILD_TESTS=OFF >/dev/null
-cmake --build build-bench --target sfit_cli bench_fit bench_banded_lsq bench_reader >/dev/null
+cmake --build build-bench --target sfit_cli bench_fit bench_banded_lsq bench_reader bench_passes >/dev/null
 out=bench/results.md
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -16,7 +16,7 @@ reps=5
   echo
   echo "Medians of $reps repetitions; real (wall) time. Load average at start: $(cut -d' ' -f1-3 /proc/loadavg)."
   echo
-  for b in bench_fit bench_banded_lsq bench_reader; do
+  for b in bench_fit bench_banded_lsq bench_reader bench_passes; do
     build-bench/bench/$b --benchmark_repetitions=$reps --benchmark_report_aggregates_only=true \
       --benchmark_format=json --benchmark_min_time=0.3 > "$tmp/$b.json" 2>/dev/null
     python3 - "$tmp/$b.json" <<'PY'

@@ -126,7 +126,9 @@ struct FitReport {
   double box_excursion = 0;  ///< largest distance of the sampled surface outside the data's box
   double fold = 0;           ///< how far the surface doubles back between rows (fold_check.h)
   double row_gap = 0;        ///< largest distance, sampled between rows, to the nearer data row
-  /// kSurface: the rules whose pairs the search tried, in order (empty: no search, e.g. T = 0).
+  /// kSurface: the rules the search looked at, in order: their pairs tried, or none where the
+  /// rows fitted alone at T need more control points than the search could win with (empty: no
+  /// search, e.g. T = 0).
   std::vector<Parametrization> rules_searched;
 };
 

@@ -54,7 +54,7 @@ constexpr auto kInverse = [] {
 }();
 }  // namespace
 
-int eval_basis(int degree, int count, bool periodic, double t, double* N) {
+int eval_basis_general(int degree, int count, bool periodic, double t, double* N) {
   const int s = find_span(degree, count, periodic, t);
   // Where the 2*degree knots around the span are consecutive integers (always for periodic,
   // away from the clamped ends otherwise), left[j] = x + j - 1 and right[j] = j - x with

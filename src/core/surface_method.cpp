@@ -11,6 +11,7 @@
 #include <string>
 
 #include "basis.h"
+#include "count_floor.h"
 #include "deviation.h"
 #include "fit_frame.h"
 #include "fit_monitor.h"
@@ -119,38 +120,6 @@ class FewRows {
 
 }  // namespace
 
-// A lower bound on the two-stage fit's nu x nv at the paper's rule: its nu is at least every
-// row's count, which is at least the smallest count holding that row within the curve
-// stage's budget (CountSearch::kLinear), and its nv at least degree_v + 1. From 8 rows.
-// Bounded: each row's scan tries at most kLowerBoundCounts counts (one O(points) solve each);
-// where none holds, the count after the last one tried is the row's bound (every count below
-// it failed). A row with one outlier needs thousands of counts: 2 rows of 30000 points took
-// minutes at one solve per count, a fraction of a second now. Rows whose counts stay below
-// degree + 1 + kLowerBoundCounts (every data set of the tests) get the same bound as before.
-long sfit01_lower_bound(const Rows& rows, const FitOptions& o) {
-  const double roundoff = kRoundoffRelative * bounding_box(rows).diagonal();
-  CurveFitOptions co;
-  co.degree = o.degree_u;
-  co.periodic = o.closed_u;
-  co.search = CountSearch::kLinear;
-  constexpr int kLowerBoundCounts = 256;
-  co.linear_limit = kLowerBoundCounts;
-  for (int a = 0; a < 3; ++a)
-    co.bound[a] = o.tolerance[a] > 0 ? std::max(0.5 * o.tolerance[a] * (1 - 1e-9), 0.5 * roundoff)
-                                     : 0.5 * roundoff;
-  const std::size_t M = rows.size(), picks = std::min<std::size_t>(8, M);
-  std::vector<int> counts(picks, 0);
-  parallel_for(picks, threads_for(rows, o.threads), [&](std::size_t p) {
-    const auto row = rows[p * (M - 1) / std::max<std::size_t>(1, picks - 1)];
-    if (row.size() >= static_cast<std::size_t>(o.degree_u + 1)) {
-      const CurveFit f = fit_curve(row, co);
-      counts[p] = f.curve.control.empty() ? o.degree_u + 1 + kLowerBoundCounts : f.curve.count();
-    }
-  });
-  const int nu = std::max(o.degree_u + 1, *std::max_element(counts.begin(), counts.end()));
-  return static_cast<long>(nu) * (o.degree_v + 1);
-}
-
 FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
                              std::span<const double> seam_offsets) {
   const double t0 = now();
@@ -169,11 +138,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
                           !(o.tolerance.array() == 0).all();
   std::optional<FitResult> base;
   long bound = LONG_MAX, lower = 0;
-  if (defer_base) {
-    progress_phase("lower bound", 1);
-    lower = sfit01_lower_bound(rows, o);
-    progress_advance(1);
-  } else {
+  if (!defer_base) {
     base = SurfaceFitter(o1).fit_aligned(rows, seam_offsets);
     if (base->report.within_tolerance) {
       bound = static_cast<long>(base->surface.count_u) * base->surface.count_v;
@@ -193,6 +158,13 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   const std::size_t step =
       points > kSearchPoints ? (points + kSearchPoints - 1) / kSearchPoints : 1;
   const std::vector<Parametrization> rules = rules_of(o.parametrization);
+  // Rows (and a grid's columns) fitted as curves at T bound each rule's counts from below
+  // (count_floor.h): a rule whose bound cannot beat the best, or that the sample's
+  // rows are too short to reach, is not searched; where noise forces every rule to
+  // interpolate the rows, no pair is searched at all.
+  long floored = 0, forced_rules = 0;
+  std::size_t longest = 0;
+  for (std::size_t j = 0; j < rows.size(); ++j) longest = std::max(longest, rows[j].size());
   progress_phase("search", rules.size());
   FitMonitor* const monitor = current_monitor();
   std::size_t rules_done = 0;
@@ -206,6 +178,14 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     // The paper's parameters depend on a row's length, so a sample of the row has others:
     // on large data that rule is the two-stage fit's alone.
     if (step > 1 && rule == Parametrization::kPaper) continue;
+    const CountFloor floor = count_floor(fr.centred, os, rule, fr.roundoff);
+    if (static_cast<long>(floor.nu) * floor.nv >= bound ||
+        (step > 1 && static_cast<std::size_t>(floor.nu) > longest / step + 2 + 16)) {
+      ++floored;
+      forced_rules += floor.forced ? 1 : 0;
+      searched.push_back(rule);  // looked at: its floor ruled it out
+      continue;
+    }
     searched.push_back(rule);
     TensorProblem prob(fr.centred, spec_of(os, rule, fr.threads, seam_offsets));
     const PairRange range{prob.min_u(), prob.max_u(), few.min_v(prob.min_v()),
@@ -303,6 +283,12 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
       int nu = found ? found->nu : base ? base->surface.count_u : 0;
       int nv = found ? found->nv : base ? base->surface.count_v : 0;
       if (!found && (!base || base->report.parametrization != rule)) nu = 0;  // none of the rule
+      // kAuto solves at most kLinfTries minimax pairs per rule, so its descent takes at most
+      // that many steps: where even those cannot go below the best, it is not started.
+      const long reach = std::min({static_cast<long>(nu - kLinfTries) * nv,
+                                   static_cast<long>(nu) * (nv - kLinfTries),
+                                   static_cast<long>(nu - 1) * (nv - 1)});
+      if (o.norm == FitNorm::kAuto && reach >= bound) nu = 0;
       if (nu > 0) {
         const auto [mu, mv] = descend(nu, nv, range, linf, worth);
         if (static_cast<long>(mu) * mv < static_cast<long>(nu) * nv) {
@@ -321,8 +307,15 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     }
   }
   progress_advance(rules.size());
+  const bool forced =
+      floored > 0 && forced_rules == floored && floored == static_cast<long>(searched.size());
   std::string deferred;
   if (defer_base) {
+    if (best) {
+      progress_phase("lower bound", 1);
+      lower = sfit01_lower_bound(rows, o, static_cast<long>(best->nu) * best->nv);
+      progress_advance(1);
+    }
     if (best && static_cast<long>(best->nu) * best->nv <= lower) {
       deferred = "; at most " + std::to_string(lower) +
                  ", a lower bound on sfit01's count, so sfit01 was not run";
@@ -339,8 +332,17 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     b.report.method = FitMethod::kSfit01;
     b.report.pairs_tried = tried;
     b.report.rules_searched = searched;
-    b.report.stop_reason =
-        interpolate ? "sfit01: T = 0 interpolates" : "sfit01: no smaller pair held";
+    b.report.stop_reason = interpolate ? "sfit01: T = 0 interpolates"
+                           : forced    ? "sfit01: the noise forces interpolation at T (every "
+                                         "sampled row needs all its points), no pair searched"
+                                       : "sfit01: no smaller pair held";
+    if (floored > 0 && !forced)
+      b.report.stop_reason =
+          floored == static_cast<long>(searched.size())
+              ? "sfit01: no pair searched: rows fitted alone at T need more control points "
+                "than any pair the search could reach"
+              : b.report.stop_reason + " (" + std::to_string(floored) +
+                    " rules not searched: their rows at T need more control points)";
     if (over_budget > 0)
       b.report.stop_reason += " (" + std::to_string(over_budget) + " pairs over the solve budget)";
     b.report.seconds = now() - t0;

@@ -179,14 +179,44 @@ const TensorProblem::Moments& TensorProblem::moments(int nu) {
   const std::size_t n_gram = shared_u_ ? 1 : M;
   m->gram.assign(n_gram * nu * w, 0.0);
   m->rhs.assign(M * nu, Point::Zero());
+  auto params = [&](std::size_t j) {
+    const int n = static_cast<int>(rows_[j].size());
+    return spec_.rule == Parametrization::kPaper
+               ? paper_parameters(p, nu, spec_.closed_u, n)
+               : scaled_parameters(p, nu, spec_.closed_u,
+                                   std::span<const double>(positions_u_.data() + off[j], n));
+  };
+  // Rows that share their u (no weights) share every point's basis: evaluated once, not per
+  // row (the same values, so the same bits; a grid's pass is then its B^T D alone).
+  std::vector<double> shared_t, shared_basis;
+  std::vector<int> shared_first;
+  if (shared_u_) {
+    shared_t = params(0);
+    shared_first.resize(shared_t.size());
+    shared_basis.resize(shared_t.size() * w);
+    for (std::size_t k = 0; k < shared_t.size(); ++k)
+      shared_first[k] = eval_basis(p, nu, spec_.closed_u, shared_t[k], &shared_basis[k * w]);
+  }
   parallel_for(M, spec_.threads, [&](std::size_t j) {
     const auto row = rows_[j];
     const int n = static_cast<int>(row.size());
-    const std::vector<double> t =
-        spec_.rule == Parametrization::kPaper
-            ? paper_parameters(p, nu, spec_.closed_u, n)
-            : scaled_parameters(p, nu, spec_.closed_u,
-                                std::span<const double>(positions_u_.data() + off[j], n));
+    if (shared_u_) {
+      std::copy(shared_t.begin(), shared_t.end(), m->u.begin() + off[j]);
+      double* G = j == 0 ? m->gram.data() : nullptr;
+      Point* R = &m->rhs[j * nu];
+      for (int k = 0; k < n; ++k) {
+        const int f = shared_first[k];
+        const double* b = &shared_basis[static_cast<std::size_t>(k) * w];
+        for (int a = 0; a < w; ++a) {
+          const int i = wrap_index(f + a, nu);
+          R[i] += (1.0 * b[a]) * row[k];
+          if (G)
+            for (int d = 0; a + d < w; ++d) G[i * w + d] += b[a] * b[a + d];
+        }
+      }
+      return;
+    }
+    const std::vector<double> t = params(j);
     std::copy(t.begin(), t.end(), m->u.begin() + off[j]);
     const bool gram_here = !shared_u_ || j == 0;
     double* G = gram_here ? &m->gram[(shared_u_ ? 0 : j) * nu * w] : nullptr;

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "input_file.h"
+#include "parse_double.h"
 #include "sfit/error.h"
 
 namespace sfit::io {
@@ -210,7 +211,7 @@ class Parser {
     if (b != e && *b == '+') ++b;
     double x = 0;
     if (tok.empty()) fail(ErrorCode::kInputSyntax, f.column, "empty field where a number belongs");
-    const auto r = std::from_chars(b, e, x);
+    const auto r = detail::parse_double(b, e, x);
     if (r.ec == std::errc::result_out_of_range)
       fail(ErrorCode::kInputData, f.column, "'" + show(tok) + "' is out of the range of a double");
     if (r.ec != std::errc() || r.ptr != e || b == e)

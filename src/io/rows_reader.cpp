@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "input_file.h"
+#include "parse_double.h"
 #include "sfit/error.h"
 
 namespace sfit::io {
@@ -139,7 +140,7 @@ class Parser {
     const char* e = b + tok.size();
     if (b != e && *b == '+') ++b;
     double x = 0;
-    const auto r = std::from_chars(b, e, x);
+    const auto r = detail::parse_double(b, e, x);
     if (r.ec == std::errc::result_out_of_range && r.ptr == e) {
       // Too large is an error; too small (1e-400) underflows to 0 or a subnormal, as strtod.
       const std::string copy(b, e);

@@ -1,0 +1,40 @@
+// Lower bounds on a surface's counts from a few rows and columns fitted as curves at the full
+// T: where the noise forces (near) interpolation the surface search cannot beat the two
+// stages, and is not run (surface_method.cpp, docs/control-points.md). Private.
+#pragma once
+
+#include <climits>
+
+#include "sfit/parametrization.h"
+#include "sfit/rows.h"
+#include "sfit/surface_fit.h"
+
+namespace sfit::detail {
+
+struct CountFloor {
+  /// The largest of the smallest counts holding T (fit_curve(), CountSearch::kFast) of up to
+  /// 8 rows spread over the data: a surface restricted to a row is a curve on its u knots, so
+  /// (least squares taken as the measure of what a count can hold) no surface with fewer
+  /// control points along the rows holds there either. degree_u + 1 where nothing is known.
+  int nu = 0;
+  /// The same across, from up to 8 columns where every row has as many points (a grid);
+  /// degree_v + 1 otherwise.
+  int nv = 0;
+  /// Every sampled row needs a control point per point (interpolation).
+  bool forced = false;
+};
+
+/// The floor of `rule` on `rows` (centred) at T = o.tolerance (the round-off where T is 0).
+/// Weighted rows and rows shorter than degree + 2 points say nothing (the floor stays at
+/// degree + 1, not forced). Counted work: a few curve solves per sampled row and column.
+CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization rule,
+                       double roundoff);
+
+/// A lower bound on the two-stage fit's nu x nv at the paper's rule: its nu is at least every
+/// row's count at the curve stage's budget T / 2, from 8 rows (surface_method.cpp defers the
+/// two stages on large data while the search beats it).
+/// Each row's scan stops at the count whose bound reaches `needed` (where the bound is to be
+/// compared with a count of `needed`: the same verdict, fewer solves).
+long sfit01_lower_bound(const Rows& rows, const FitOptions& o, long needed = LONG_MAX);
+
+}  // namespace sfit::detail
