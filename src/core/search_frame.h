@@ -41,8 +41,9 @@ struct Frame {
                     DeviationCheck* out = nullptr, const Rows* sample = nullptr) const;
 };
 
-/// The parameter rules the search tries for FitOptions::parametrization (all four for kAuto
-/// and kFewest, in the order uniform, chord, centripetal, paper).
+/// The parameter rules the search tries for FitOptions::parametrization (all five for kAuto
+/// and kFewest, in the order geometric, uniform, chord, centripetal, paper; geometric first
+/// so that its count bounds the others' searches).
 std::vector<Parametrization> rules_of(Parametrization p);
 /// The solver's spec for a fit's options at one rule.
 TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads,

@@ -14,6 +14,7 @@
 #include "deviation.h"
 #include "fit_frame.h"
 #include "fit_monitor.h"
+#include "geometric_search.h"
 #include "minimax.h"
 #include "pair_search.h"
 #include "parallel.h"
@@ -163,7 +164,9 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   // a few on 10^6 ragged points at 1e-3).
   FitOptions o1 = o;
   o1.method = FitMethod::kSfit01;
-  if (o1.parametrization == Parametrization::kAuto) o1.parametrization = Parametrization::kPaper;
+  if (o1.parametrization == Parametrization::kAuto ||
+      o1.parametrization == Parametrization::kGeometric)
+    o1.parametrization = Parametrization::kPaper;
   const bool defer_base = rows.total_points() > kSearchPoints &&
                           o1.parametrization == Parametrization::kPaper &&
                           !(o.tolerance.array() == 0).all();
@@ -197,6 +200,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   FitMonitor* const monitor = current_monitor();
   std::size_t rules_done = 0;
   std::vector<Parametrization> searched;
+  std::optional<GeometricFit> geo;  // the kGeometric rule's surface (geometric_search.h)
   for (Parametrization rule : rules) {
     if (rules_done > 0) progress_advance(rules_done);
     ++rules_done;
@@ -206,6 +210,22 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     // The paper's parameters depend on a row's length, so a sample of the row has others:
     // on large data that rule is the two-stage fit's alone.
     if (step > 1 && rule == Parametrization::kPaper) continue;
+    if (rule == Parametrization::kGeometric) {
+      // Its own search (scattered parameters); first, so its count bounds the other rules'.
+      if (!o.closed_v && rows.size() < static_cast<std::size_t>(o.degree_v) + 1) continue;
+      searched.push_back(rule);
+      geo = search_geometric(fr, o, bound);
+      if (geo) tried += geo->tried;
+      const long n = geo ? static_cast<long>(geo->surface.count_u) * geo->surface.count_v : 0;
+      if (geo && n < bound) {
+        bound = n;
+        best = Candidate{rule, FitNorm::kL2, geo->surface.count_u, geo->surface.count_v, geo->stop};
+        if (monitor) monitor->found(best->nu, best->nv);
+      } else {
+        geo.reset();
+      }
+      continue;
+    }
     searched.push_back(rule);
     TensorProblem prob(fr.centred, spec_of(os, rule, fr.threads, seam_offsets));
     const PairRange range{prob.min_u(), prob.max_u(), few.min_v(prob.min_v()),
@@ -341,20 +361,34 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     b.report.rules_searched = searched;
     b.report.stop_reason =
         interpolate ? "sfit01: T = 0 interpolates" : "sfit01: no smaller pair held";
+    if (!interpolate &&
+        static_cast<std::size_t>(b.surface.count_u) * b.surface.count_v > rows.total_points())
+      b.report.stop_reason +=
+          "; more control points than data points: no pair with fewer held T at every point, "
+          "as where the data's noise exceeds T";
     if (over_budget > 0)
       b.report.stop_reason += " (" + std::to_string(over_budget) + " pairs over the solve budget)";
     b.report.seconds = now() - t0;
     return std::move(b);
   }
-  // Remake the winner (deterministic: the same bits as when it was judged) and check it.
-  TensorProblem prob(fr.centred, spec_of(os, best->rule, fr.threads, seam_offsets));
-  Surface s = *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
-  std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(few.nv(best->nv));
-  DeviationCheck c;
-  progress_phase("check", 1);
-  fr.judge(s, u, v, &c);
-  progress_advance(1);
-  FitResult out = assemble(fr, std::move(s), std::move(u), std::move(v), c, o);
+  FitResult out;
+  if (best->rule == Parametrization::kGeometric) {
+    DeviationCheck c;
+    progress_phase("check", 1);
+    fr.judge(geo->surface, geo->u, geo->v, &c);
+    progress_advance(1);
+    out = assemble_geometric(fr, std::move(*geo), c, o);
+  } else {
+    // Remake the winner (deterministic: the same bits as when it was judged) and check it.
+    TensorProblem prob(fr.centred, spec_of(os, best->rule, fr.threads, seam_offsets));
+    Surface s = *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
+    std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(few.nv(best->nv));
+    DeviationCheck c;
+    progress_phase("check", 1);
+    fr.judge(s, u, v, &c);
+    progress_advance(1);
+    out = assemble(fr, std::move(s), std::move(u), std::move(v), c, o);
+  }
   // The fold guard (docs/seams.md): a winner that doubles back on itself between the rows
   // yields to the two stages' surface, which guards its own folds.
   if (o.fold_guard && folds(out, fr.box)) {

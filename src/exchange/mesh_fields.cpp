@@ -79,7 +79,7 @@ DataPoints data_points(const Surface& s, const FitResult* fit, const Rows* rows)
   d.v.resize(d.u.size());
   std::size_t k = 0;
   for (std::size_t j = 0; j < rows->size(); ++j)
-    for (std::size_t i = 0; i < (*rows)[j].size(); ++i, ++k) d.v[k] = fit->v[j];
+    for (std::size_t i = 0; i < (*rows)[j].size(); ++i, ++k) d.v[k] = fit->point_v(j, k);
   d.deviation.resize(d.points.size());
   for (std::size_t i = 0; i < d.points.size(); ++i)
     d.deviation[i] = s.evaluate(d.u[i], d.v[i]) - d.points[i];

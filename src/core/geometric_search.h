@@ -1,0 +1,47 @@
+// The surface search at Parametrization::kGeometric (docs/method.md 7.5): the fewest nu x nv
+// whose scattered least-squares fit (scattered_lsq.h) holds T at every point, with the
+// points' parameters from a base surface (geometric_params.h), corrected by projection while
+// that lowers the count. Private to the surface method.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "search_frame.h"
+
+namespace sfit::detail {
+
+/// A surface of the rule (centred) with its points' parameters at its counts.
+struct GeometricFit {
+  Surface surface;
+  std::vector<double> u, v;  ///< per point, rows.points() order
+  std::string stop;          ///< why the search stopped there
+  long tried = 0;            ///< pairs solved
+  int corrections = 0;       ///< rounds of parameter correction that lowered the count
+  double smoothing = 0;      ///< the smoothness weight the surface was made with
+};
+
+/// Coarse to fine: on large data the pairs are searched on every step-th point of each row
+/// (search_pairs(), below `bound` and below the points' number), the parameters corrected there
+/// (project_parameters(), refit, descend: rounds while the count falls), then the pair is
+/// verified on every point (raised until it holds, descended while one fewer holds). A pair
+/// holds when the frame's judge passes it (every point within T, the guards) and the surface
+/// does not fold. nullopt: no base surface, or nothing below `bound` held.
+std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound);
+
+/// The rule's surface at exactly (nu, nv) (FitOptions::counts), holding or not; nullopt where
+/// the rule has no base surface for the rows.
+std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOptions& o, int nu,
+                                                int nv);
+
+/// The result of a surface of the rule: assemble() with the shape measured on the surface
+/// (the fold on columns sampled evenly across the domain; the rows are no iso-curves, so
+/// row_gap is 0) and v_points set (v: each row's mean v).
+FitResult assemble_geometric(const Frame& fr, GeometricFit g, const DeviationCheck& c,
+                             const FitOptions& o);
+
+/// The fold of a surface over evenly spaced columns (fold_measure()).
+double geometric_fold(const Surface& s);
+
+}  // namespace sfit::detail
