@@ -19,8 +19,6 @@ namespace {
 // Above this many points the pairs are searched on a sample of the rows' points (every
 // step-th of each row, and its last), then verified on all.
 constexpr std::size_t kSamplePoints = 20000;
-// Rounds of parameter correction (each: project, refit, descend) while the count falls.
-constexpr int kCorrectionRounds = 3;
 // Gauss-Newton steps per point and round.
 constexpr int kNewtonSteps = 3;
 // Pairs with more unknowns than this, or whose factorisation costs more flops, are not tried.
@@ -70,22 +68,72 @@ bool folds(const Surface& s, const Frame& fr) {
   return geometric_fold(s) > kFoldRelative * fr.box.diagonal();
 }
 
+// Beyond this fraction of the data's diagonal outside its box, a span without data is no
+// longer calm (the guard of fit_frame.h allows a tenth where the data is).
+constexpr double kCalmMargin = 0.5;
+
+}  // namespace
+
+std::vector<char> covered_spans(const Surface& s, std::span<const double> u,
+                                std::span<const double> v) {
+  const int su = s.periodic_u ? s.count_u : s.count_u - s.degree_u;
+  const int sv = s.periodic_v ? s.count_v : s.count_v - s.degree_v;
+  std::vector<char> cell(static_cast<std::size_t>(su) * sv, 0);
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    const int a = std::clamp(static_cast<int>(std::floor(u[k])), 0, su - 1);
+    const int b = std::clamp(static_cast<int>(std::floor(v[k])), 0, sv - 1);
+    cell[static_cast<std::size_t>(a) * sv + b] = 1;
+  }
+  return cell;
+}
+
+bool stays_near_where_covered(const Surface& s, std::span<const double> u,
+                              std::span<const double> v, const BoundingBox& box) {
+  const double d = box.diagonal();
+  auto within = [&](const Point& p, double margin) {
+    return (p.array() >= (box.min.array() - margin)).all() &&
+           (p.array() <= (box.max.array() + margin)).all();
+  };
+  for (const Point& p : s.control)
+    if (!within(p, d)) return false;
+  const std::vector<char> cell = covered_spans(s, u, v);
+  const int su = s.periodic_u ? s.count_u : s.count_u - s.degree_u;
+  const int sv = s.periodic_v ? s.count_v : s.count_v - s.degree_v;
+  for (int a = 0; a <= 4 * su; ++a)
+    for (int b = 0; b <= 4 * sv; ++b) {
+      // A sample on a span's edge belongs to every span it touches.
+      bool data = false;
+      for (int x : {(a - 1) / 4, a / 4})
+        for (int y : {(b - 1) / 4, b / 4})
+          if (x >= 0 && y >= 0 && x < su && y < sv && cell[static_cast<std::size_t>(x) * sv + y])
+            data = true;
+      const Point p = s.evaluate(s.u_end() * a / (4 * su), s.v_end() * b / (4 * sv));
+      if (!within(p, data ? 0.1 * d : kCalmMargin * d)) return false;
+    }
+  return true;
+}
+
+namespace {
+
 // The problem's surface at (nu, nv), judged on its rows (the frame's, or a sample of them):
 // lowered smoothing where T was missed by a little; a fold fails the pair.
+// From `start` the weight is lowered by kSmoothingLower while T is missed: always above
+// kSmoothing (a weight asked for), then once where T was missed by at most kSmoothingReach.
 Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, int nu, int nv,
-                DeviationCheck* out = nullptr) {
+                DeviationCheck* out = nullptr, double start = kSmoothing) {
   Attempt a;
   const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
-  for (double w : {kSmoothing, kSmoothing * kSmoothingLower}) {
+  for (double w = start; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {
     Surface s;
     if (!sp.solve(nu, nv, w, s)) return a;
-    const PairVerdict verdict = fr.judge(s, u, v, out, sample);
+    PairVerdict verdict = fr.judge(s, u, v, out, sample, false);
+    if (verdict.holds && !stays_near_where_covered(s, u, v, fr.centred_box)) verdict.holds = false;
     a = {verdict, std::move(s), w};
     if (verdict.holds) {
       if (folds(a.s, fr)) a.verdict.holds = false;
       return a;
     }
-    if (verdict.ratio > kSmoothingReach) return a;
+    if (verdict.ratio > kSmoothingReach && w <= kSmoothing) return a;
   }
   return a;
 }
@@ -110,8 +158,11 @@ PairOracle oracle_for(const ScatteredProblem& sp, const Frame& fr, const Rows* s
 PairRange range_for(const ScatteredProblem& sp, const Rows& rows) {
   std::size_t longest = 0;
   for (std::size_t j = 0; j < rows.size(); ++j) longest = std::max(longest, rows[j].size());
-  return PairRange{sp.min_u(), std::max(sp.min_u(), static_cast<int>(longest)), sp.min_v(),
-                   std::max(sp.min_v(), static_cast<int>(rows.size())), [&sp](int nu, int nv) {
+  // v is no row's index: as many counts across as along (a few rows of long rows may need
+  // more control points across than rows where each point has its own v).
+  const int most = static_cast<int>(std::max(longest, rows.size()));
+  return PairRange{sp.min_u(), std::max(sp.min_u(), most), sp.min_v(), std::max(sp.min_v(), most),
+                   [&sp](int nu, int nv) {
                      return static_cast<long>(nu) * nv <= kMaxUnknowns &&
                             sp.cost(nu, nv) <= kMaxCost;
                    }};
@@ -140,7 +191,8 @@ double geometric_fold(const Surface& s) {
   return fold_measure(s, grid);
 }
 
-std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound) {
+std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
+                                             int corrections) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
@@ -179,7 +231,7 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   std::string stop = c.stop;
   // Correction: project the points onto the fit, refit, descend; while the count falls.
   int rounds = 0;
-  for (int round = 0; round < kCorrectionRounds; ++round) {
+  for (int round = 0; round < corrections; ++round) {
     const Attempt at = attempt(*sp, fr, sptr, nu, nv);
     if (!at.verdict.holds) break;
     std::vector<double> u = sp->u_at(nu), v = sp->v_at(nv);
@@ -277,16 +329,22 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   if (rounds > 0)
     out.stop +=
         "; parameters corrected " + std::to_string(rounds) + " time" + (rounds > 1 ? "s" : "");
+  // The part of the domain the data covers (the rest decided by the smoothness term).
+  const std::vector<char> cells = covered_spans(out.surface, out.u, out.v);
+  const long covered = std::count(cells.begin(), cells.end(), 1);
+  if (covered < static_cast<long>(cells.size()))
+    out.stop += "; data in " + std::to_string(covered) + " of the " + std::to_string(cells.size()) +
+                " knot spans";
   return out;
 }
 
 std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOptions& o, int nu,
-                                                int nv) {
+                                                int nv, double smoothing) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
   const ScatteredProblem sp(fr.centred, spec, std::move(f->u), std::move(f->v));
-  const Attempt at = attempt(sp, fr, nullptr, nu, nv);
+  const Attempt at = attempt(sp, fr, nullptr, nu, nv, nullptr, smoothing);
   if (at.s.control.empty()) return std::nullopt;
   GeometricFit g;
   g.surface = at.s;

@@ -117,13 +117,13 @@ Frame::Frame(const Rows& rows, const FitOptions& o) : tolerance(o.tolerance) {
 }
 
 PairVerdict Frame::judge(const Surface& s, std::span<const double> u, std::span<const double> v,
-                         DeviationCheck* out, const Rows* sample) const {
+                         DeviationCheck* out, const Rows* sample, bool guards) const {
   const Rows& r = sample ? *sample : centred;
   const PointsVerdict p =
       check_points(s, r, u, v, tolerance, roundoff,
                    out ? std::numeric_limits<double>::infinity() : kLinfReach, threads);
   if (out) *out = check_deviation(s, r, u, v, tolerance, roundoff, threads);
-  return {p.within && p.near && !failed_guard(s, centred_box), p.ratio};
+  return {p.within && p.near && (!guards || !failed_guard(s, centred_box)), p.ratio};
 }
 
 std::vector<Parametrization> rules_of(Parametrization p) {
