@@ -17,7 +17,7 @@ enum class Parametrization {
   kUniform,      ///< docs/method.md 7.4: equal steps in the point's index, t = L j / (N-1)
   kChord,        ///< docs/method.md 7.4: proportional to the chord length along the row
   kCentripetal,  ///< docs/method.md 7.4: proportional to the square root of the chord length
-  /// docs/method.md 7.5: each point's (u, v) from its projection onto a base surface (the best
+  /// docs/method.md 7.9: each point's (u, v) from its projection onto a base surface (the best
   /// plane of the points; for closed rows an axis through the rows' centroids, u the angle
   /// around it), corrected by projection onto the fit. v differs along a row
   /// (FitResult::v_points). The surface method (FitMethod::kSurface) only; not a curve rule.

@@ -1,4 +1,4 @@
-// Parametrization::kGeometric (docs/method.md 7.5): each point's parameters from its projection
+// Parametrization::kGeometric (docs/method.md 7.9): each point's parameters from its projection
 // onto a base surface, and their correction by projection onto a fit (Hoschek). Private.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The surface search at Parametrization::kGeometric (docs/method.md 7.5): the fewest nu x nv
+// The surface search at Parametrization::kGeometric (docs/method.md 7.9): the fewest nu x nv
 // whose scattered least-squares fit (scattered_lsq.h) holds T at every point, with the
 // points' parameters from a base surface (geometric_params.h), corrected by projection while
 // that lowers the count. Private to the surface method.

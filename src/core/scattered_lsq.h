@@ -1,5 +1,5 @@
 // Tensor-product least squares over scattered parameters: every data point has its own (u, v)
-// (Parametrization::kGeometric, docs/method.md 7.5), at a pair of counts (nu, nv) on uniform
+// (Parametrization::kGeometric, docs/method.md 7.9), at a pair of counts (nu, nv) on uniform
 // knots, with a small smoothness term on the control net. Private to the surface search.
 //
 // PURPOSE  min sum_k w_k |S(u_k, v_k) - D_k|^2 + lambda (|D_u P|^2 + |D_v P|^2) over the nu x nv
