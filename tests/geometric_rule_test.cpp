@@ -1,4 +1,4 @@
-// Parametrization::kGeometric (docs/method.md 7.5): each point's parameters from its projection
+// Parametrization::kGeometric (docs/method.md 7.9): each point's parameters from its projection
 // onto a base surface, the scattered least squares with its smoothness term, the correction by
 // projection, and the default that tries the rule beside the four row rules. Data the row
 // rules zigzag on: scan lines clipped by a circle, a range image with a hole, unevenly sampled

@@ -22,8 +22,8 @@ constexpr std::size_t kSamplePoints = 20000;
 // Gauss-Newton steps per point and round.
 constexpr int kNewtonSteps = 3;
 // Pairs with more unknowns than this, or whose factorisation costs more flops, are not tried.
-constexpr long kMaxUnknowns = 40000;
-constexpr double kMaxCost = 2e9;
+constexpr long kMaxUnknowns = 20000;
+constexpr double kMaxCost = 4e7;
 // Where a pair misses T by at most this factor, the smoothness weight is lowered (by
 // kSmoothingLower) and the pair refitted once: the term may be what misses. The lower weight
 // still decides the spans without data (as any positive weight does) but pulls far less.
@@ -94,8 +94,12 @@ bool stays_near_where_covered(const Surface& s, std::span<const double> u,
     return (p.array() >= (box.min.array() - margin)).all() &&
            (p.array() <= (box.max.array() + margin)).all();
   };
-  for (const Point& p : s.control)
+  bool hull_inside = true;  // then no sample can leave the box grown by a tenth
+  for (const Point& p : s.control) {
     if (!within(p, d)) return false;
+    hull_inside = hull_inside && within(p, 0.1 * d);
+  }
+  if (hull_inside) return true;
   const std::vector<char> cell = covered_spans(s, u, v);
   const int su = s.periodic_u ? s.count_u : s.count_u - s.degree_u;
   const int sv = s.periodic_v ? s.count_v : s.count_v - s.degree_v;

@@ -211,18 +211,23 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     // on large data that rule is the two-stage fit's alone.
     if (step > 1 && rule == Parametrization::kPaper) continue;
     if (rule == Parametrization::kGeometric) {
-      // Its own search (scattered parameters); first, so its count bounds the other rules'.
+      // Its own search (scattered parameters, geometric_search.h), first. On large data its
+      // count bounds the other rules' searches (they cost most there); on small data they run
+      // with the bounds they had without it (a tighter bound can end a column's search at a
+      // top pair that fails a guard), and it is kept after them where it is smaller.
       if (!o.closed_v && rows.size() < static_cast<std::size_t>(o.degree_v) + 1) continue;
       searched.push_back(rule);
       geo = search_geometric(fr, o, bound);
       if (geo) tried += geo->tried;
       const long n = geo ? static_cast<long>(geo->surface.count_u) * geo->surface.count_v : 0;
-      if (geo && n < bound) {
+      if (!geo || n >= bound) {
+        geo.reset();
+      } else if (monitor) {
+        monitor->found(geo->surface.count_u, geo->surface.count_v);
+      }
+      if (geo && step > 1) {
         bound = n;
         best = Candidate{rule, FitNorm::kL2, geo->surface.count_u, geo->surface.count_v, geo->stop};
-        if (monitor) monitor->found(best->nu, best->nv);
-      } else {
-        geo.reset();
       }
       continue;
     }
@@ -341,6 +346,17 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     }
   }
   progress_advance(rules.size());
+  // The geometric rule's surface where no row rule gave fewer (a tie keeps the row rule's).
+  if (geo && !(best && best->rule == Parametrization::kGeometric)) {
+    const long n = static_cast<long>(geo->surface.count_u) * geo->surface.count_v;
+    if (n < bound) {
+      bound = n;
+      best = Candidate{Parametrization::kGeometric, FitNorm::kL2, geo->surface.count_u,
+                       geo->surface.count_v, geo->stop};
+    } else {
+      geo.reset();
+    }
+  }
   std::string deferred;
   if (defer_base) {
     if (best && static_cast<long>(best->nu) * best->nv <= lower) {
