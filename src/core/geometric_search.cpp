@@ -347,15 +347,30 @@ std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOption
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
-  const ScatteredProblem sp(fr.centred, spec, std::move(f->u), std::move(f->v));
-  const Attempt at = attempt(sp, fr, nullptr, nu, nv, nullptr, smoothing);
+  auto sp = std::make_unique<ScatteredProblem>(fr.centred, spec, std::move(f->u), std::move(f->v));
+  Attempt at = attempt(*sp, fr, nullptr, nu, nv, nullptr, smoothing);
   if (at.s.control.empty()) return std::nullopt;
   GeometricFit g;
-  g.surface = at.s;
-  g.u = sp.u_at(nu);
-  g.v = sp.v_at(nv);
-  g.smoothing = at.smoothing;
   g.tried = 1;
+  // Where the base surface's parameters miss T, the correction (as in the search) while the
+  // worst deviation falls: the pair the search chose held at corrected parameters.
+  for (int round = 0; round < kCorrectionRounds && !at.verdict.holds; ++round) {
+    std::vector<double> u = sp->u_at(nu), v = sp->v_at(nv);
+    project_parameters(at.s, fr.centred, u, v, kNewtonSteps, fr.threads);
+    std::vector<double> nfu, nfv;
+    to_fractions(at.s, u, v, nfu, nfv);
+    auto next = std::make_unique<ScatteredProblem>(fr.centred, spec, nfu, nfv);
+    Attempt a = attempt(*next, fr, nullptr, nu, nv, nullptr, smoothing);
+    ++g.tried;
+    if (a.s.control.empty() || !(a.verdict.holds || a.verdict.ratio < at.verdict.ratio)) break;
+    at = std::move(a);
+    sp = std::move(next);
+    ++g.corrections;
+  }
+  g.surface = at.s;
+  g.u = sp->u_at(nu);
+  g.v = sp->v_at(nv);
+  g.smoothing = at.smoothing;
   g.stop = "counts given";
   return g;
 }

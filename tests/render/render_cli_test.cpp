@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "picture_checks.h"
-#include "surface_json_value.h"
 #include "sfit/render/image.h"
+#include "surface_json_value.h"
 #include "test_support.h"
 
 namespace sfit::test {
