@@ -173,7 +173,7 @@ test("the option table: the library's, and /api/options checks through it", asyn
   const spec = (name) => r.json.find((o) => o.name === name);
   assert.deepEqual([spec("degree").min, spec("degree").max, spec("degree").default], [1, 20, 3]);
   assert.deepEqual(spec("parameters").choices,
-    ["paper", "uniform", "chord", "centripetal", "fewest", "auto"]);
+    ["paper", "uniform", "chord", "centripetal", "geometric", "fewest", "auto"]);
   assert.equal(spec("parameters").default, "auto");
   for (const name of ["method", "norm", "seam", "orient", "rerepresent", "fold_guard", "threads"])
     assert.ok(spec(name), name);
