@@ -35,8 +35,10 @@ void expect_guarantee(const FitResult& fit, const Rows& rows, const Point& tol) 
   EXPECT_TRUE((test::reference_deviation(fit, rows).array() <= tol.array() * (1 + 1e-9)).all());
   for (std::size_t j = 0; j < rows.size(); ++j)
     for (std::size_t k = 0; k < rows[j].size(); ++k) {
-      const Point d =
-          (fit.surface.evaluate(fit.u[rows.offsets()[j] + k], fit.v[j]) - rows[j][k]).cwiseAbs();
+      const Point d = (fit.surface.evaluate(fit.u[rows.offsets()[j] + k],
+                                            fit.point_v(j, rows.offsets()[j] + k)) -
+                       rows[j][k])
+                          .cwiseAbs();
       ASSERT_TRUE((d.array() <= tol.array() * (1 + 1e-9)).all())
           << "row " << j << " point " << k << " deviation " << d.transpose();
     }

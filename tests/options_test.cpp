@@ -180,7 +180,7 @@ TEST(OptionTable, JsonHasEveryOptionWithItsLimits) {
   const auto params =
       *std::find_if(j.begin(), j.end(), [](auto& o) { return o["name"] == "parameters"; });
   EXPECT_EQ(params["default"], "auto");
-  EXPECT_EQ(params["choices"].size(), 6u);
+  EXPECT_EQ(params["choices"].size(), 7u);
 }
 
 }  // namespace

@@ -95,7 +95,7 @@ TEST(Weights, AHeavyPointIsHeldCloserThanItsNeighbours) {
   const FitResult weighted = fit_surface(rows, o);
   ASSERT_TRUE(weighted.report.within_tolerance);
   auto surf_dev = [&](const FitResult& r) {
-    return (r.surface.evaluate(r.u[at], r.v[2]) - rows.points()[at]).norm();
+    return (r.surface.evaluate(r.u[at], r.point_v(2, at)) - rows.points()[at]).norm();
   };
   EXPECT_LT(surf_dev(weighted), surf_dev(plain));
 }

@@ -362,7 +362,7 @@ void write_fit_pictures(const std::vector<std::string>& pngs, const PictureArgs&
                         const FitResult& fit, const Rows& rows, const std::string& input_name) {
   if (pngs.empty()) return;
   const std::vector<Point> deviations =
-      render::deviations_at_parameters(fit.surface, rows, fit.u, fit.v);
+      render::deviations_at_parameters(fit.surface, rows, fit.u, fit.v_for_points());
   double largest = 0;
   for (const Point& d : deviations) largest = std::max(largest, d.cwiseAbs().maxCoeff());
   for (std::size_t i = 0; i < pngs.size(); ++i) {

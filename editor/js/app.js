@@ -18,7 +18,7 @@ function applyState(st, job) {
   const t0 = performance.now();
   const first = !S.state;
   S.state = st;
-  if (st.rows) { S.rows = st.rows; S.dev = st.point_deviation; S.params = { u: st.u, v: st.v }; }
+  if (st.rows) { S.rows = st.rows; S.dev = st.point_deviation; S.params = { u: st.u, v: st.v, vp: st.v_points || null }; }
   if (first) {
     view.fitView(true);
     $("input").textContent = st.input;

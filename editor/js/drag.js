@@ -74,7 +74,8 @@ export function rowPlaneNormal(row) {
 function surfaceNormal(row, index) {
   const st = S.state, sf = st.surface;
   if (!S.params || !S.params.u[row]) return null;
-  const u = S.params.u[row][index], v = S.params.v[row];
+  const u = S.params.u[row][index];
+  const v = S.params.vp ? S.params.vp[row][index] : S.params.v[row];
   const dom = (k, p) => [k[p], k[k.length - p - 1]];
   const [u0, u1] = dom(sf.knots_u, sf.degree[0]), [v0, v1] = dom(sf.knots_v, sf.degree[1]);
   const hu = 1e-5 * (u1 - u0), hv = 1e-5 * (v1 - v0);

@@ -14,7 +14,7 @@ export const S = {
   state: null,      // the last state from the server
   rows: [],         // [[x, y, z], ...] per row, as the page shows them
   dev: [],          // per point fraction of T used
-  params: null,     // {u: per row, v}
+  params: null,     // {u: per row, v, vp: per row where each point has its own v}
   centre: [0, 0, 0],
   diagonal: 1,
   selected: null,   // {row, index}

@@ -27,7 +27,7 @@ after(async () => { if (ed) await ed.stop(); });
 function assertWithinT(st) {
   const t = st.report.tolerance, slack = st.report.roundoff;
   st.rows.forEach((row, j) => row.forEach((p, i) => {
-    const s = evaluate(st.surface, st.u[j][i], st.v[j]);
+    const s = evaluate(st.surface, st.u[j][i], st.v_points ? st.v_points[j][i] : st.v[j]);
     for (let a = 0; a < 3; a++)
       assert.ok(Math.abs(s[a] - p[a]) <= t[a] * (1 + 1e-9) + slack,
         `row ${j} point ${i} axis ${a}: |S - D| = ${Math.abs(s[a] - p[a])} > T = ${t[a]}`);
@@ -174,7 +174,7 @@ test("the option table: the library's, and /api/options checks through it", asyn
   const spec = (name) => r.json.find((o) => o.name === name);
   assert.deepEqual([spec("degree").min, spec("degree").max, spec("degree").default], [1, 20, 3]);
   assert.deepEqual(spec("parameters").choices,
-    ["paper", "uniform", "chord", "centripetal", "fewest", "auto"]);
+    ["paper", "uniform", "chord", "centripetal", "geometric", "fewest", "auto"]);
   assert.equal(spec("parameters").default, "auto");
   for (const name of ["method", "norm", "seam", "orient", "rerepresent", "fold_guard", "threads"])
     assert.ok(spec(name), name);

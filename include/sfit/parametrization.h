@@ -17,15 +17,21 @@ enum class Parametrization {
   kUniform,      ///< docs/method.md 7.4: equal steps in the point's index, t = L j / (N-1)
   kChord,        ///< docs/method.md 7.4: proportional to the chord length along the row
   kCentripetal,  ///< docs/method.md 7.4: proportional to the square root of the chord length
+  /// docs/method.md 7.9: each point's (u, v) from its projection onto a base surface (the best
+  /// plane of the points; for closed rows an axis through the rows' centroids, u the angle
+  /// around it), corrected by projection onto the fit. v differs along a row
+  /// (FitResult::v_points). The surface method (FitMethod::kSurface) only; not a curve rule.
+  kGeometric,
   /// Not a rule: fit_surface() tries the four above and keeps the surface with the fewest
   /// control points (the report names the rule used). Costs the four fits.
   kFewest,
   /// Not a rule: the fit method's own choice (FitOptions::method): kPaper for the two-stage
-  /// method (FitMethod::kSfit01, as SFIT01), the four rules as kFewest for the surface search.
+  /// method (FitMethod::kSfit01, as SFIT01); for the surface search kGeometric and the four
+  /// rules, keeping the surface with the fewest control points.
   kAuto,
 };
 
-/// "paper", "uniform", "chord", "centripetal", "fewest", "auto".
+/// "paper", "uniform", "chord", "centripetal", "geometric", "fewest", "auto".
 std::string_view to_string(Parametrization p);
 /// The inverse of to_string(); false if `name` is none of them.
 bool parse_parametrization(std::string_view name, Parametrization& out);

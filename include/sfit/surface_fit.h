@@ -136,7 +136,20 @@ struct FitResult {
   Surface surface;
   FitReport report;
   std::vector<double> u;  ///< parameter u of every data point, in the order of Rows::points()
-  std::vector<double> v;  ///< parameter v of every row
+  /// Parameter v of every row. Parametrization::kGeometric: each row's mean v_points (its
+  /// points' v differ), for what reads one v per row (a row's label, not where it is fitted).
+  std::vector<double> v;
+  /// Parameter v of every data point (order of Rows::points()) where the rule gives each point
+  /// its own (Parametrization::kGeometric); empty for the row rules (point k of row j is at
+  /// v[j]). Evaluate at point_v().
+  std::vector<double> v_points;
+  /// The v the surface was fitted at for the point of row `row` whose index in
+  /// Rows::points() is `index`.
+  double point_v(std::size_t row, std::size_t index) const {
+    return v_points.empty() ? v[row] : v_points[index];
+  }
+  /// v as the checks take it: v_points where set, else v (one per row).
+  const std::vector<double>& v_for_points() const { return v_points.empty() ? v : v_points; }
 };
 
 /// Checks rows and options; throws Error (kInputData for the data, kUsage for the options)

@@ -69,6 +69,7 @@ class Fit:
     report: dict[str, Any]  # the keys of the JSON report
     u: npt.NDArray[np.float64]  # (P,): u of every point, row after row
     v: npt.NDArray[np.float64]  # (M,): v of every row
+    v_points: npt.NDArray[np.float64]  # (P,) or empty: v of every point (parameters 'geometric')
     points: npt.NDArray[np.float64]  # (P, 3)
     row_sizes: list[int]
     def save(self, path: str, mesh: bool = False, mesh_density: int = 0, fields: bool = False, units: str = "mm", obj_freeform: bool = False, normals: str = "auto") -> None: ...

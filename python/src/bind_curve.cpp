@@ -87,7 +87,8 @@ Parameter domain [0, t_end]; evaluation clamps (open) or wraps (periodic) t.)")
         if (!parse_count_search(search, o.search))
           usage_error("search", "'" + search + "' is not one of fast, linear, known");
         Parametrization rule = Parametrization::kPaper;
-        if (!parse_parametrization(parameters, rule) || rule == Parametrization::kFewest)
+        if (!parse_parametrization(parameters, rule) || rule == Parametrization::kFewest ||
+            rule == Parametrization::kGeometric)
           usage_error("parameters",
                       "'" + parameters + "' is not one of paper, uniform, chord, centripetal");
         validate_curve(p, o);  // the points and degree, before they are used

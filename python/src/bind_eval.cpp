@@ -171,7 +171,8 @@ Surface surface_from_state(py::handle state) {
 }
 
 // A Fit as plain values: the surface and report as sfit's JSON (doubles round-trip exactly),
-// the parameters, points and weights as bytes.
+// the parameters, points and weights as bytes. Version 2 adds the points' own v
+// (Fit.v_points, parameters 'geometric'); version 1 states (8 values) are still read.
 py::tuple fit_state(const PyFit& f) {
   const Rows& r = *f.rows;
   std::vector<long> sizes;
@@ -179,12 +180,13 @@ py::tuple fit_state(const PyFit& f) {
   auto bytes = [](const void* p, std::size_t n) {
     return py::bytes(static_cast<const char*>(p), n);
   };
-  return py::make_tuple(1, io::surface_to_json_text(f.result.surface),
+  return py::make_tuple(2, io::surface_to_json_text(f.result.surface),
                         io::report_to_json_text(f.result.report, -1),
                         bytes(f.result.u.data(), f.result.u.size() * sizeof(double)),
                         bytes(f.result.v.data(), f.result.v.size() * sizeof(double)),
                         bytes(r.points().data(), r.total_points() * sizeof(Point)), sizes,
-                        bytes(r.weights().data(), r.weights().size() * sizeof(double)));
+                        bytes(r.weights().data(), r.weights().size() * sizeof(double)),
+                        bytes(f.result.v_points.data(), f.result.v_points.size() * sizeof(double)));
 }
 
 template <class T>
@@ -197,8 +199,11 @@ std::vector<T> from_bytes(py::handle b, const char* what) {
 }
 
 PyFit fit_from_state(const py::tuple& t) {
-  if (t.size() != 8 || !py::isinstance<py::int_>(t[0]) || py::cast<int>(t[0]) != 1)
-    data_error("not a Fit state (a tuple of 8 values, version 1, from Fit.__reduce__)");
+  const int version = t.size() > 0 && py::isinstance<py::int_>(t[0]) ? py::cast<int>(t[0]) : 0;
+  if (!((version == 1 && t.size() == 8) || (version == 2 && t.size() == 9)))
+    data_error(
+        "not a Fit state (a tuple of 9 values, version 2, or 8, version 1, from "
+        "Fit.__reduce__)");
   PyFit f;
   f.result.surface = io::surface_from_json_text(py::cast<std::string>(t[1]), "pickle");
   f.result.report = io::report_from_json_text(py::cast<std::string>(t[2]), "pickle");
@@ -219,6 +224,11 @@ PyFit fit_from_state(const py::tuple& t) {
   if (!weights.empty() && weights.size() != points.size())
     data_error("Fit state: weights and points disagree");
   rows->set_weights(std::move(weights));
+  if (version == 2) {
+    f.result.v_points = from_bytes<double>(t[8], "v_points");
+    if (!f.result.v_points.empty() && f.result.v_points.size() != points.size())
+      data_error("Fit state: v_points and points disagree");
+  }
   f.rows = std::move(rows);
   return f;
 }

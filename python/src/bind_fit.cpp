@@ -104,7 +104,13 @@ void bind_fit(py::module_& m) {
           "parameter u of every data point, row after row (length: all points)")
       .def_property_readonly(
           "v", [](const PyFit& f) { return read_only(vector_to_array(f.result.v)); },
-          "parameter v of every row (length: rows)")
+          "parameter v of every row (length: rows); parameters 'geometric': each row's mean "
+          "v_points")
+      .def_property_readonly(
+          "v_points", [](const PyFit& f) { return read_only(vector_to_array(f.result.v_points)); },
+          "parameter v of every data point, row after row, where the rule gives each point its "
+          "own (parameters 'geometric'); empty for the row rules (the points of row j are at "
+          "v[j])")
       .def_property_readonly(
           "points",
           [](const PyFit& f) {

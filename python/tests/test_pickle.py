@@ -85,3 +85,39 @@ def test_fit_state_of_garbage_raises():
         sfit._sfit._fit_from_state((2, "", "", b"", b"", b"", [], b""))
     with pytest.raises(sfit.Error):
         sfit._sfit._fit_from_state(("x",))
+
+
+def clipped_scan_lines():
+    """Scan lines across the unit disc, points at random along each (rows of very different
+    extents): the data the parameters 'geometric' are for."""
+    rng = np.random.default_rng(11)
+    rows = []
+    for y in np.linspace(-0.98, 0.98, 30):
+        h = np.sqrt(1 - y * y)
+        n = max(6, int(60 * h))
+        x = np.sort(rng.uniform(-h, h, n))
+        rows.append(np.column_stack([x, np.full(n, y), 0.3 * np.sin(3 * x) * np.cos(2 * y) + 0.1 * x * y]))
+    return rows
+
+
+@pytest.mark.parametrize("how", ["pickle", "copy", "deepcopy"])
+def test_points_own_v_travels_with_a_fit(how):
+    f = sfit.fit(clipped_scan_lines(), parameters="geometric")
+    assert f.report["parameters"] == "geometric"
+    assert f.v_points.shape == (len(f.points),) and len(f.v) == len(f.row_sizes)
+    g = {"pickle": lambda x: pickle.loads(pickle.dumps(x)), "copy": copy.copy,
+         "deepcopy": copy.deepcopy}[how](f)
+    assert np.array_equal(g.v_points, f.v_points) and np.array_equal(g.u, f.u)
+    assert g.__reduce__()[1] == f.__reduce__()[1]
+    # Every point within T at its own (u, v), on the copy's surface.
+    d = np.abs(g.surface(g.u, g.v_points) - g.points)
+    assert (d <= np.asarray(f.report["tolerance"]) * (1 + 1e-9)).all()
+    # The row rules leave it empty.
+    assert sfit.fit(clipped_scan_lines(), parameters="chord").v_points.shape == (0,)
+
+
+def test_a_version_1_fit_state_still_reads(fits):
+    state = fits[0].__reduce__()[1][0]
+    assert state[0] == 2 and len(state) == 9
+    old = sfit._sfit._fit_from_state((1,) + tuple(state[1:8]))
+    assert np.array_equal(old.u, fits[0].u) and old.v_points.shape == (0,)

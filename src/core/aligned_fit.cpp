@@ -34,6 +34,11 @@ void restore_original_order(FitResult& fit, const Rows& original, const RowAlign
   std::vector<double> u(fit.u.size());
   for (std::size_t k = 0; k < idx.size(); ++k) u[idx[k]] = fit.u[k];
   fit.u = std::move(u);
+  if (!fit.v_points.empty()) {  // Parametrization::kGeometric: v per point, likewise
+    std::vector<double> v(fit.v_points.size());
+    for (std::size_t k = 0; k < idx.size(); ++k) v[idx[k]] = fit.v_points[k];
+    fit.v_points = std::move(v);
+  }
   FitReport& r = fit.report;
   if (r.worst_row >= 0 && r.worst_index >= 0) {
     const std::size_t j = static_cast<std::size_t>(r.worst_row);

@@ -19,10 +19,11 @@ DeviationCheck check_rows(const Surface& s, const Rows& rows, std::span<const do
   std::array<double, kMaxDegree + 1> bv, bu;
   std::vector<Point> iso(static_cast<std::size_t>(s.count_u));
   const auto& off = rows.offsets();
+  const bool per_point = v.size() != rows.size();
   for (std::size_t j = j0; j < j1; ++j) {
     // The iso-curve v = v_j: its control points Q_i = sum_l B_l(v_j) P_il, once per row.
-    const int fv = eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
-    for (int i = 0; i < s.count_u; ++i) {
+    const int fv = per_point ? 0 : eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
+    for (int i = 0; i < s.count_u && !per_point; ++i) {
       Point q = Point::Zero();
       for (int b = 0; b <= s.degree_v; ++b) q += bv[b] * s.at(i, wrap_index(fv + b, s.count_v));
       iso[i] = q;
@@ -31,7 +32,17 @@ DeviationCheck check_rows(const Surface& s, const Rows& rows, std::span<const do
     for (std::size_t k = 0; k < row.size(); ++k) {
       const int fu = eval_basis(s.degree_u, s.count_u, s.periodic_u, u[off[j] + k], bu.data());
       Point p = Point::Zero();
-      for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[wrap_index(fu + a, s.count_u)];
+      if (per_point) {
+        const int fw = eval_basis(s.degree_v, s.count_v, s.periodic_v, v[off[j] + k], bv.data());
+        for (int a = 0; a <= s.degree_u; ++a) {
+          Point q = Point::Zero();
+          for (int b = 0; b <= s.degree_v; ++b)
+            q += bv[b] * s.at(wrap_index(fu + a, s.count_u), wrap_index(fw + b, s.count_v));
+          p += bu[a] * q;
+        }
+      } else {
+        for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[wrap_index(fu + a, s.count_u)];
+      }
       const Point d = p - row[k];
       const Point ad = d.cwiseAbs();
       if (!ad.allFinite()) {

@@ -19,7 +19,8 @@ struct DeviationCheck {
 };
 
 /// Evaluates the surface at every data point's assigned parameters (u per point, in the
-/// order of rows.points(); v per row) and measures the per-axis deviation.
+/// order of rows.points(); v per row, or per point where v.size() != rows.size(), as
+/// FitResult::v_for_points()) and measures the per-axis deviation.
 /// A point is within if |S - D|_a <= tolerance_a on every axis a, where a tolerance of 0 allows
 /// `roundoff` (the round-off allowance applies at T = 0 only).
 /// `threads` (0: all cores) splits the rows into fixed blocks; the result is the same for any

@@ -72,8 +72,8 @@ void check_as_written(FitResult& r, const Rows& rows, const FitOptions& o) {
   // Where the evaluation's round-off alone exceeds T (a few ulps of the offset), nothing
   // holds; the check still measures the deviations for the report.
   const bool room = (limit.array() >= 0).all();
-  DeviationCheck c =
-      check_deviation(s, rows, r.u, r.v, limit.cwiseMax(0.0), 0.0, threads_for(rows, o.threads));
+  DeviationCheck c = check_deviation(s, rows, r.u, r.v_for_points(), limit.cwiseMax(0.0), 0.0,
+                                     threads_for(rows, o.threads));
   c.within = c.within && room;
   rep.max_deviation = c.max_deviation;
   rep.worst_row = c.worst_row;

@@ -25,9 +25,9 @@ void check_offset_digits(const BoundingBox& box, const Point& tolerance, double 
 
 /// Replaces r's check (max deviation, worst point, within_tolerance) by the check of
 /// r.surface exactly as it stands (the data's coordinates) against `rows` (as given, at r.u
-/// and r.v): a point holds where |S - D| plus a bound on the round-off of evaluating S there
-/// (any evaluator, degree and control points' size) is within T (plus the allowance at T = 0).
-/// Where the centred check held and this one does not, the offset took the digits: throws
+/// and r.v_for_points()): a point holds where |S - D| plus a bound on the round-off of evaluating S
+/// there (any evaluator, degree and control points' size) is within T (plus the allowance at T =
+/// 0). Where the centred check held and this one does not, the offset took the digits: throws
 /// kInputData, naming the point. The verdict is the same for any thread count.
 void check_as_written(FitResult& r, const Rows& rows, const FitOptions& o);
 

@@ -84,6 +84,11 @@ void validate(const Rows& rows, const FitOptions& o) {
   check_degree(o.degree_u, "degree_u");
   check_degree(o.degree_v, "degree_v");
   check_threads(o.threads, "threads");  // 0 ... kMaxThreads: more is refused, not attempted
+  if (o.parametrization == Parametrization::kGeometric && o.method == FitMethod::kSfit01)
+    throw Error(ErrorCode::kUsage,
+                "parameters geometric gives each point its own v, which the two stages of method "
+                "sfit01 cannot fit: use method surface",
+                Place{.option = "parameters"});
   const std::size_t M = rows.size();
   if (M == 0) throw Error(ErrorCode::kInputData, "no points: the input has no rows");
   if (M < 2)

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "fit_frame.h"
+#include "geometric_search.h"
 #include "minimax.h"
 #include "search_frame.h"
 #include "sfit/error.h"
@@ -37,6 +38,23 @@ FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0,
   check_counts(o);
   const Frame fr(rows, o);
   const int nu = (*o.counts)[0], nv = (*o.counts)[1];
+  if (o.parametrization == Parametrization::kGeometric) {
+    std::optional<GeometricFit> g = geometric_at_counts(fr, o, nu, nv);
+    if (!g)
+      throw Error(ErrorCode::kToleranceNotMet,
+                  "no surface with " + std::to_string(nu) + " x " + std::to_string(nv) +
+                      " control points at parameters geometric (no base surface for these "
+                      "rows, or too few control points for a closed direction)",
+                  Place{.option = "counts"}, {static_cast<double>(nu), static_cast<double>(nv)});
+    DeviationCheck c;
+    const PairVerdict verdict = fr.judge(g->surface, g->u, g->v, &c);
+    FitResult out = assemble_geometric(fr, std::move(*g), c, o);
+    out.report.pairs_tried = 1;
+    out.report.stop_reason = "counts given";
+    out.report.within_tolerance = verdict.holds;
+    out.report.seconds = now() - t0;
+    return out;
+  }
   std::optional<Surface> best;
   std::vector<double> best_u, best_v;
   DeviationCheck best_check;
@@ -45,6 +63,7 @@ FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0,
   FitNorm best_norm = FitNorm::kL2;
   long tried = 0;
   for (Parametrization rule : rules_of(o.parametrization)) {
+    if (rule == Parametrization::kGeometric) continue;  // above, when asked for by name
     TensorProblem prob(fr.centred, spec_of(o, rule, fr.threads, seam_offsets));
     for (FitNorm norm : {FitNorm::kL2, FitNorm::kLinf}) {
       // kL2: least squares only; kLinf: minimax (least squares only where the minimax does

@@ -83,11 +83,12 @@ std::vector<OptionSpec> make_table() {
        "auto",
        0,
        0,
-       {"paper", "uniform", "chord", "centripetal", "fewest", "auto"},
+       {"paper", "uniform", "chord", "centripetal", "geometric", "fewest", "auto"},
        "how points get parameters, along and across the rows: paper (SFIT01's, by the "
-       "point's index), uniform (index), chord (chord length), centripetal, fewest (tries the "
-       "four, keeps the fewest control points), or auto (the four with --method surface, "
-       "paper with --method sfit01)"},
+       "point's index), uniform (index), chord (chord length), centripetal, geometric (each "
+       "point's projection onto a plane or, closed rows, an axis; --method surface only), "
+       "fewest (tries the rules, keeps the fewest control points), or auto (geometric and "
+       "the four with --method surface, paper with --method sfit01)"},
       {"method",
        "--method",
        fit,

@@ -28,6 +28,8 @@ std::string_view to_string(Parametrization p) {
       return "chord";
     case Parametrization::kCentripetal:
       return "centripetal";
+    case Parametrization::kGeometric:
+      return "geometric";
     case Parametrization::kFewest:
       return "fewest";
     case Parametrization::kAuto:
@@ -39,7 +41,8 @@ std::string_view to_string(Parametrization p) {
 bool parse_parametrization(std::string_view name, Parametrization& out) {
   for (Parametrization p :
        {Parametrization::kPaper, Parametrization::kUniform, Parametrization::kChord,
-        Parametrization::kCentripetal, Parametrization::kFewest, Parametrization::kAuto})
+        Parametrization::kCentripetal, Parametrization::kGeometric, Parametrization::kFewest,
+        Parametrization::kAuto})
     if (name == to_string(p)) {
       out = p;
       return true;

@@ -47,9 +47,11 @@ PointsVerdict check_points(const Surface& s, const Rows& rows, std::span<const d
     std::array<double, kMaxDegree + 1> bu, bv;
     std::vector<Point> iso(static_cast<std::size_t>(s.count_u));
     PointsVerdict& out = part[b];
+    const bool per_point = v.size() != M;  // FitResult::v_points
     for (std::size_t j = b * per; j < std::min(M, (b + 1) * per) && !stop.load(); ++j) {
-      const int fv = eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
-      for (int i = 0; i < s.count_u; ++i) {
+      const int fv =
+          per_point ? 0 : eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
+      for (int i = 0; i < s.count_u && !per_point; ++i) {
         Point q = Point::Zero();
         for (int c = 0; c <= s.degree_v; ++c) q += bv[c] * s.at(i, wrap_index(fv + c, s.count_v));
         iso[i] = q;
@@ -59,7 +61,18 @@ PointsVerdict check_points(const Surface& s, const Rows& rows, std::span<const d
       for (std::size_t k = 0; k < row.size(); ++k) {
         const int fu = eval_basis(s.degree_u, s.count_u, s.periodic_u, uj[k], bu.data());
         Point p = Point::Zero();
-        for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[wrap_index(fu + a, s.count_u)];
+        if (per_point) {
+          const int fw =
+              eval_basis(s.degree_v, s.count_v, s.periodic_v, v[rows.offsets()[j] + k], bv.data());
+          for (int a = 0; a <= s.degree_u; ++a) {
+            Point q = Point::Zero();
+            for (int c = 0; c <= s.degree_v; ++c)
+              q += bv[c] * s.at(wrap_index(fu + a, s.count_u), wrap_index(fw + c, s.count_v));
+            p += bu[a] * q;
+          }
+        } else {
+          for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[wrap_index(fu + a, s.count_u)];
+        }
         const Point d = p - row[k];
         const Point ad = d.cwiseAbs();
         if (!ad.allFinite()) {
@@ -104,19 +117,19 @@ Frame::Frame(const Rows& rows, const FitOptions& o) : tolerance(o.tolerance) {
 }
 
 PairVerdict Frame::judge(const Surface& s, std::span<const double> u, std::span<const double> v,
-                         DeviationCheck* out, const Rows* sample) const {
+                         DeviationCheck* out, const Rows* sample, bool guards) const {
   const Rows& r = sample ? *sample : centred;
   const PointsVerdict p =
       check_points(s, r, u, v, tolerance, roundoff,
                    out ? std::numeric_limits<double>::infinity() : kLinfReach, threads);
   if (out) *out = check_deviation(s, r, u, v, tolerance, roundoff, threads);
-  return {p.within && p.near && !failed_guard(s, centred_box), p.ratio};
+  return {p.within && p.near && (!guards || !failed_guard(s, centred_box)), p.ratio};
 }
 
 std::vector<Parametrization> rules_of(Parametrization p) {
   if (p == Parametrization::kAuto || p == Parametrization::kFewest)
-    return {Parametrization::kUniform, Parametrization::kChord, Parametrization::kCentripetal,
-            Parametrization::kPaper};
+    return {Parametrization::kGeometric, Parametrization::kUniform, Parametrization::kChord,
+            Parametrization::kCentripetal, Parametrization::kPaper};
   return {p};
 }
 

@@ -36,13 +36,16 @@ struct Frame {
   /// every guard (fit_frame.h) passed. The verdict's ratio is the worst |S - D| / T over the
   /// points and axes; without `out` the pass stops once a point misses T by more than
   /// kLinfReach (the ratio is then a value above it: all the search asks), with `out` it is
-  /// exact and `out` receives the whole check.
+  /// exact and `out` receives the whole check. `guards` false: the caller runs its own
+  /// (Parametrization::kGeometric, whose domain has spans without data: geometric_search.h).
   PairVerdict judge(const Surface& s, std::span<const double> u, std::span<const double> v,
-                    DeviationCheck* out = nullptr, const Rows* sample = nullptr) const;
+                    DeviationCheck* out = nullptr, const Rows* sample = nullptr,
+                    bool guards = true) const;
 };
 
-/// The parameter rules the search tries for FitOptions::parametrization (all four for kAuto
-/// and kFewest, in the order uniform, chord, centripetal, paper).
+/// The parameter rules the search tries for FitOptions::parametrization (all five for kAuto
+/// and kFewest, in the order geometric, uniform, chord, centripetal, paper; geometric first
+/// so that its count bounds the others' searches).
 std::vector<Parametrization> rules_of(Parametrization p);
 /// The solver's spec for a fit's options at one rule.
 TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads,

@@ -15,6 +15,7 @@
 #include "deviation.h"
 #include "fit_frame.h"
 #include "fit_monitor.h"
+#include "geometric_search.h"
 #include "minimax.h"
 #include "pair_search.h"
 #include "parallel.h"
@@ -132,7 +133,9 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   // a few on 10^6 ragged points at 1e-3).
   FitOptions o1 = o;
   o1.method = FitMethod::kSfit01;
-  if (o1.parametrization == Parametrization::kAuto) o1.parametrization = Parametrization::kPaper;
+  if (o1.parametrization == Parametrization::kAuto ||
+      o1.parametrization == Parametrization::kGeometric)
+    o1.parametrization = Parametrization::kPaper;
   const bool defer_base = rows.total_points() > kSearchPoints &&
                           o1.parametrization == Parametrization::kPaper &&
                           !(o.tolerance.array() == 0).all();
@@ -169,6 +172,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   FitMonitor* const monitor = current_monitor();
   std::size_t rules_done = 0;
   std::vector<Parametrization> searched;
+  std::optional<GeometricFit> geo;  // the kGeometric rule's surface (geometric_search.h)
   for (Parametrization rule : rules) {
     if (rules_done > 0) progress_advance(rules_done);
     ++rules_done;
@@ -178,6 +182,38 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     // The paper's parameters depend on a row's length, so a sample of the row has others:
     // on large data that rule is the two-stage fit's alone.
     if (step > 1 && rule == Parametrization::kPaper) continue;
+    if (rule == Parametrization::kGeometric) {
+      // Its own search (scattered parameters, geometric_search.h), first. On large data its
+      // count bounds the other rules' searches (they cost most there); on small data they run
+      // with the bounds they had without it (a tighter bound can end a column's search at a
+      // top pair that fails a guard), and it is kept after them where it is smaller.
+      if (!o.closed_v && rows.size() < static_cast<std::size_t>(o.degree_v) + 1) continue;
+      searched.push_back(rule);
+      // The rows' floor at chord-length positions (count_floor.h; a heuristic here too: a
+      // surface of these parameters is no iso-curve along a row): where it cannot beat the
+      // bound, or noise forces interpolation, the rule is not searched.
+      const CountFloor cf = count_floor(fr.centred, os, Parametrization::kChord, fr.roundoff);
+      if (cf.forced || static_cast<long>(cf.nu) * cf.nv >= bound) {
+        ++floored;
+        forced_rules += cf.forced ? 1 : 0;
+        continue;
+      }
+      long geo_pairs = 0;
+      geo = search_geometric(fr, o, bound, kCorrectionRounds, &geo_pairs);
+      tried += geo_pairs;
+      if (geo_pairs == 0) ++floored;  // no pair of it could be tried
+      const long n = geo ? static_cast<long>(geo->surface.count_u) * geo->surface.count_v : 0;
+      if (!geo || n >= bound) {
+        geo.reset();
+      } else if (monitor) {
+        monitor->found(geo->surface.count_u, geo->surface.count_v);
+      }
+      if (geo && step > 1) {
+        bound = n;
+        best = Candidate{rule, FitNorm::kL2, geo->surface.count_u, geo->surface.count_v, geo->stop};
+      }
+      continue;
+    }
     const CountFloor floor = count_floor(fr.centred, os, rule, fr.roundoff);
     if (static_cast<long>(floor.nu) * floor.nv >= bound ||
         (step > 1 && static_cast<std::size_t>(floor.nu) > longest / step + 2 + 16)) {
@@ -309,6 +345,17 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   progress_advance(rules.size());
   const bool forced =
       floored > 0 && forced_rules == floored && floored == static_cast<long>(searched.size());
+  // The geometric rule's surface where no row rule gave fewer (a tie keeps the row rule's).
+  if (geo && !(best && best->rule == Parametrization::kGeometric)) {
+    const long n = static_cast<long>(geo->surface.count_u) * geo->surface.count_v;
+    if (n < bound) {
+      bound = n;
+      best = Candidate{Parametrization::kGeometric, FitNorm::kL2, geo->surface.count_u,
+                       geo->surface.count_v, geo->stop};
+    } else {
+      geo.reset();
+    }
+  }
   std::string deferred;
   if (defer_base) {
     if (best) {
@@ -343,20 +390,34 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
                 "than any pair the search could reach"
               : b.report.stop_reason + " (" + std::to_string(floored) +
                     " rules not searched: their rows at T need more control points)";
+    if (!interpolate && !forced &&
+        static_cast<std::size_t>(b.surface.count_u) * b.surface.count_v > rows.total_points())
+      b.report.stop_reason +=
+          "; more control points than data points: no pair with fewer held T at every point, "
+          "as where the data's noise exceeds T";
     if (over_budget > 0)
       b.report.stop_reason += " (" + std::to_string(over_budget) + " pairs over the solve budget)";
     b.report.seconds = now() - t0;
     return std::move(b);
   }
-  // Remake the winner (deterministic: the same bits as when it was judged) and check it.
-  TensorProblem prob(fr.centred, spec_of(os, best->rule, fr.threads, seam_offsets));
-  Surface s = *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
-  std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(few.nv(best->nv));
-  DeviationCheck c;
-  progress_phase("check", 1);
-  fr.judge(s, u, v, &c);
-  progress_advance(1);
-  FitResult out = assemble(fr, std::move(s), std::move(u), std::move(v), c, o);
+  FitResult out;
+  if (best->rule == Parametrization::kGeometric) {
+    DeviationCheck c;
+    progress_phase("check", 1);
+    fr.judge(geo->surface, geo->u, geo->v, &c);
+    progress_advance(1);
+    out = assemble_geometric(fr, std::move(*geo), c, o);
+  } else {
+    // Remake the winner (deterministic: the same bits as when it was judged) and check it.
+    TensorProblem prob(fr.centred, spec_of(os, best->rule, fr.threads, seam_offsets));
+    Surface s = *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
+    std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(few.nv(best->nv));
+    DeviationCheck c;
+    progress_phase("check", 1);
+    fr.judge(s, u, v, &c);
+    progress_advance(1);
+    out = assemble(fr, std::move(s), std::move(u), std::move(v), c, o);
+  }
   // The fold guard (docs/seams.md): a winner that doubles back on itself between the rows
   // yields to the two stages' surface, which guards its own folds.
   if (o.fold_guard && folds(out, fr.box)) {

@@ -79,7 +79,7 @@ DataPoints data_points(const Surface& s, const FitResult* fit, const Rows* rows)
   d.v.resize(d.u.size());
   std::size_t k = 0;
   for (std::size_t j = 0; j < rows->size(); ++j)
-    for (std::size_t i = 0; i < (*rows)[j].size(); ++i, ++k) d.v[k] = fit->v[j];
+    for (std::size_t i = 0; i < (*rows)[j].size(); ++i, ++k) d.v[k] = fit->point_v(j, k);
   d.deviation.resize(d.points.size());
   for (std::size_t i = 0; i < d.points.size(); ++i)
     d.deviation[i] = s.evaluate(d.u[i], d.v[i]) - d.points[i];
@@ -99,7 +99,7 @@ std::vector<Point> grid_deviation(const Surface& s, const Mesh& m, const DataPoi
   // so the interpolation holds whatever order the data came in (a rotated closed row).
   const std::size_t nr = rows.size();
   std::vector<double> ru, rv;
-  std::vector<Point> rdev;
+  std::vector<Point> rdev, rvp;  // rvp: each point's v (in x), for points with their own v
   std::vector<std::size_t> first(nr), order(nr);
   for (std::size_t j = 0, k = 0; j < nr; k += rows[j].size(), ++j) {
     std::vector<std::size_t> idx(rows[j].size());
@@ -111,6 +111,7 @@ std::vector<Point> grid_deviation(const Surface& s, const Mesh& m, const DataPoi
     for (std::size_t i : idx) {
       ru.push_back(wrap(d.u[i], pu));
       rdev.push_back(d.deviation[i]);
+      rvp.push_back(Point(wrap(d.v[i], pv), 0, 0));
     }
     rv.push_back(wrap(d.v[k], pv));
     order[j] = j;
@@ -120,8 +121,29 @@ std::vector<Point> grid_deviation(const Surface& s, const Mesh& m, const DataPoi
   std::vector<double> v_sorted(nr);
   for (std::size_t j = 0; j < nr; ++j) v_sorted[j] = rv[order[j]];
   std::vector<Point> row_value(nr);
+  // Points with their own v (parameters geometric, FitResult::v_points): each row's v at the
+  // sample's u interpolated along the row as its values are, the rows ordered by it there.
+  bool own_v = false;
+  for (std::size_t j = 0, k = 0; j < nr && !own_v; k += rows[j].size(), ++j)
+    for (std::size_t i = 1; i < rows[j].size(); ++i)
+      if (d.v[k + i] != d.v[k]) own_v = true;
+  std::vector<double> v_at(nr);
+  std::vector<Point> value_at(nr);
   for (int a = 0; a < m.samples_u; ++a) {
-    for (std::size_t j = 0; j < nr; ++j) {
+    if (own_v) {
+      for (std::size_t r = 0; r < nr; ++r) {
+        v_at[r] = interpolate(ru, rvp, first[r], rows[r].size(), m.u[a], pu).x();
+        value_at[r] = interpolate(ru, rdev, first[r], rows[r].size(), m.u[a], pu);
+        order[r] = r;
+      }
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::size_t x, std::size_t y) { return v_at[x] < v_at[y]; });
+      for (std::size_t j = 0; j < nr; ++j) {
+        v_sorted[j] = v_at[order[j]];
+        row_value[j] = value_at[order[j]];
+      }
+    }
+    for (std::size_t j = 0; j < nr && !own_v; ++j) {
       const std::size_t r = order[j];
       row_value[j] = interpolate(ru, rdev, first[r], rows[r].size(), m.u[a], pu);
     }

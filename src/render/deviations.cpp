@@ -11,7 +11,9 @@ namespace sfit::render {
 
 std::vector<Point> deviations_at_parameters(const Surface& s, const Rows& rows,
                                             std::span<const double> u, std::span<const double> v) {
-  if (u.size() != rows.total_points() || v.size() != rows.size())
+  // v per row, or per point (FitResult::v_for_points(): Parametrization::kGeometric).
+  const bool per_point = v.size() != rows.size();
+  if (u.size() != rows.total_points() || (per_point && v.size() != rows.total_points()))
     throw Error(ErrorCode::kInternal,
                 "deviations_at_parameters: parameter counts differ from the data", Place{},
                 {static_cast<double>(u.size()), static_cast<double>(v.size())});
@@ -20,7 +22,7 @@ std::vector<Point> deviations_at_parameters(const Surface& s, const Rows& rows,
     const std::size_t first = rows.offsets()[j];
     const auto row = rows[j];
     for (std::size_t k = 0; k < row.size(); ++k)
-      d[first + k] = s.evaluate(u[first + k], v[j]) - row[k];
+      d[first + k] = s.evaluate(u[first + k], per_point ? v[first + k] : v[j]) - row[k];
   }
   return d;
 }

@@ -88,7 +88,8 @@ json point_deviations(const FitResult& fit, const Rows& rows) {
     const std::size_t first = rows.offsets()[j];
     const auto pts = rows[j];
     for (std::size_t k = 0; k < pts.size(); ++k) {
-      const Point d = (fit.surface.evaluate(fit.u[first + k], fit.v[j]) - pts[k]).cwiseAbs();
+      const Point d =
+          (fit.surface.evaluate(fit.u[first + k], fit.point_v(j, first + k)) - pts[k]).cwiseAbs();
       double r = 0;
       for (int a = 0; a < 3; ++a) r = std::max(r, d[a] / std::max(t[a], floor));
       row.push_back(r);
@@ -318,6 +319,14 @@ json state_json(const Session& s, bool with_rows, bool packed) {
                               fit.u.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[k + 1])));
     j["u"] = std::move(u);
     j["v"] = fit.v;
+    if (!fit.v_points.empty()) {  // parameters geometric: each point's own v, by row as u
+      json vp = json::array();
+      for (std::size_t k = 0; k < rows.size(); ++k)
+        vp.push_back(std::vector<double>(
+            fit.v_points.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[k]),
+            fit.v_points.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[k + 1])));
+      j["v_points"] = std::move(vp);
+    }
   }
   return j;
 }

@@ -97,7 +97,11 @@ TEST(QuickRefitOptions, TheSearchsPairSolvedOnceByLeastSquares) {
 }
 
 TEST(Session, ADragRefitsQuicklyThenFullyAndIsOneUndoStep) {
-  const Data d = ship();
+  // A row rule: its quick refit holds for these small moves. (The default picks the geometric
+  // rule for this hull at 1e-3: its parameters are the data's projection, and its quick refit
+  // at the same counts may miss T until the full fit at rest.)
+  Data d = ship();
+  d.options.parametrization = Parametrization::kPaper;
   Session s(d.rows, d.options);
   const FitResult initial = s.result();
   const Point p = d.rows[5][4];

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "exchange_cases.h"
 
 namespace sfit::exchange::detail {
@@ -28,6 +30,34 @@ TEST(MeshFields, GridDeviationInterpolatesTheDataLinearly) {
     // sample lies within the data's parameters.
     double vlo = 1e300, vhi = -1e300;
     for (double v : d.v) vlo = std::min(vlo, v), vhi = std::max(vhi, v);
+    if (!c->fit.v_points.empty()) {
+      // Points with their own v (parameters geometric): within the v the outer rows reach at
+      // every u (the lowest row's largest v, the highest row's smallest).
+      std::size_t lo = 0, hi = 0;
+      std::vector<double> mean(c->rows.size(), 0.0), least(c->rows.size(), 1e300),
+          most(c->rows.size(), -1e300);
+      for (std::size_t j = 0, k = 0; j < c->rows.size(); ++j) {
+        for (std::size_t i = 0; i < c->rows[j].size(); ++i, ++k) {
+          mean[j] += d.v[k] / static_cast<double>(c->rows[j].size());
+          least[j] = std::min(least[j], d.v[k]);
+          most[j] = std::max(most[j], d.v[k]);
+        }
+        if (mean[j] < mean[lo]) lo = j;
+        if (mean[j] > mean[hi]) hi = j;
+      }
+      vlo = most[lo];
+      vhi = least[hi];
+    }
+    // And in u where every row has points either side (rows reach different u there).
+    double ulo = -1e300, uhi = 1e300;
+    if (!c->fit.v_points.empty())
+      for (std::size_t j = 0, k = 0; j < c->rows.size(); k += c->rows[j].size(), ++j) {
+        const auto [a, b] =
+            std::minmax_element(d.u.begin() + static_cast<std::ptrdiff_t>(k),
+                                d.u.begin() + static_cast<std::ptrdiff_t>(k + c->rows[j].size()));
+        ulo = std::max(ulo, *a);
+        uhi = std::min(uhi, *b);
+      }
     const bool linear_u = !s.periodic_u;
     for (std::size_t i = 0; i < d.points.size(); ++i)
       d.deviation[i] = Point(linear_u ? d.u[i] : 0.0, 2 * d.v[i], 1);
@@ -35,6 +65,7 @@ TEST(MeshFields, GridDeviationInterpolatesTheDataLinearly) {
     for (int b = 0; b < m.samples_v; ++b) {
       if (!s.periodic_v && (m.v[b] < vlo || m.v[b] > vhi)) continue;
       for (int a = 0; a < m.samples_u; ++a) {
+        if (m.u[a] < ulo || m.u[a] > uhi) continue;
         const Point& g = lin[m.index(a, b)];
         EXPECT_NEAR(g.z(), 1.0, 1e-12);
         if (!s.periodic_v) {

@@ -62,7 +62,7 @@ int misses(const Rows& rows, const FitResult& f, const Point& tol,
   int bad = 0;
   for (std::size_t j = 0, i = 0; j < rows.size(); ++j)
     for (std::size_t k = 0; k < rows[j].size(); ++k, ++i) {
-      const Point d = (eval(f.u[i], f.v[j]) - rows[j][k]).cwiseAbs();
+      const Point d = (eval(f.u[i], f.point_v(j, i)) - rows[j][k]).cwiseAbs();
       for (int a = 0; a < 3; ++a) {
         const double limit = tol[a] + (tol[a] == 0 ? f.report.roundoff : 0.0);
         if (d[a] <= limit) continue;

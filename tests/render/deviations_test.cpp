@@ -24,7 +24,7 @@ FitResult fit(const Rows& rows, double tol, bool closed_u = false) {
 TEST(Deviations, AtTheFittedParametersTheyAreTheReports) {
   const Rows rows = load_rows(example("ship_px121_stations.rows"));
   const FitResult f = fit(rows, 0.2);
-  const auto d = render::deviations_at_parameters(f.surface, rows, f.u, f.v);
+  const auto d = render::deviations_at_parameters(f.surface, rows, f.u, f.v_for_points());
   ASSERT_EQ(d.size(), rows.total_points());
   Point m = Point::Zero();
   for (const Point& p : d) m = m.cwiseMax(p.cwiseAbs());
@@ -62,7 +62,7 @@ TEST(Deviations, ClosestPointsOfACylinderAreRadial) {
 TEST(Deviations, ClosestIsNeverFartherThanAssigned) {
   const Rows rows = load_rows(example("iea3p4mw_blade_ragged9.rows"));
   const FitResult f = fit(rows, 0.02, true);
-  const auto assigned = render::deviations_at_parameters(f.surface, rows, f.u, f.v);
+  const auto assigned = render::deviations_at_parameters(f.surface, rows, f.u, f.v_for_points());
   const auto closest = render::closest_points(f.surface, rows.points());
   for (std::size_t k = 0; k < assigned.size(); ++k)
     ASSERT_LE(closest[k].deviation.norm(), assigned[k].norm() + 1e-9) << "point " << k;

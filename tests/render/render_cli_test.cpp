@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "picture_checks.h"
-#include "surface_json_value.h"
 #include "sfit/render/image.h"
+#include "surface_json_value.h"
 #include "test_support.h"
 
 namespace sfit::test {
@@ -81,8 +81,17 @@ TEST(RenderCli, RenderSurfaceFileWithClosestPointDeviations) {
   ASSERT_NE(at, std::string::npos) << r.err;
   double closest = 0;
   ASSERT_EQ(std::sscanf(r.err.c_str() + at, "closest-point deviation: max |d|/T %lf", &closest), 1);
-  // The closest point is never farther than the fitted parameter's point.
-  EXPECT_LE(closest, report_ratio(dir + "/h.json") + 1e-3);
+  // The closest point is never farther than the fitted parameter's point. Per axis that orders
+  // the ratios where the fitted deviation is normal to the surface, as the row rules' nearly
+  // are; the geometric rule's parameters are projections onto a base plane, whose deviation
+  // may lean (0.71 T on two axes, say, where the closest point's is 0.8 T on one): there the
+  // closest point holds T.
+  const auto h = nlohmann::json::parse(read_file(dir + "/h.json"));
+  if (h["report"]["parameters"] == "geometric") {
+    EXPECT_LE(closest, 1.0 + 1e-3);
+  } else {
+    EXPECT_LE(closest, report_ratio(dir + "/h.json") + 1e-3);
+  }
   EXPECT_NE(r.err.find("the report (at the fitted parameters)"), std::string::npos);
   EXPECT_EQ(render::read_png(dir + "/d.png").width, 320);
   for (const char* mode : {"shaded", "zebra", "gauss", "mean"}) {

@@ -240,7 +240,8 @@ double max_ratio_of_report(const FitReport& rep) {
 TEST(SurfacePicture, DeviationColoursMatchTheReportsWorstPoint) {
   const Rows rows = load_rows(example("ship_px121_stations.rows"));
   const FitResult f = fit(rows, 0.2);
-  const std::vector<Point> d = render::deviations_at_parameters(f.surface, rows, f.u, f.v);
+  const std::vector<Point> d =
+      render::deviations_at_parameters(f.surface, rows, f.u, f.v_for_points());
   render::Scene sc;
   sc.surface = &f.surface;
   sc.rows = &rows;
@@ -278,7 +279,7 @@ TEST(SurfacePicture, DeviationColoursMatchTheReportsWorstPoint) {
 TEST(SurfacePicture, PointsBeyondTheToleranceAreMagenta) {
   const Rows rows = load_rows(example("ship_px121_stations.rows"));
   const FitResult f = fit(rows, 0.2);
-  std::vector<Point> d = render::deviations_at_parameters(f.surface, rows, f.u, f.v);
+  std::vector<Point> d = render::deviations_at_parameters(f.surface, rows, f.u, f.v_for_points());
   d[40] = Point(0, 0.5, 0);  // 2.5 T
   render::Scene sc;
   sc.surface = &f.surface;

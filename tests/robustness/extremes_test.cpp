@@ -73,9 +73,17 @@ TEST(Extremes, AffineMapOfTheDataMapsTheSurface) {
       worst = std::max(worst, (r.surface.control[k] - expected).cwiseAbs().maxCoeff());
     }
     EXPECT_LE(worst, m.digits * m.scale * size) << "worst control-point difference " << worst;
-    // And the parameters are those of the reference.
+    // And the parameters are those of the reference: exactly where the rule reads the rows'
+    // indices or lengths; the geometric rule projects the points, so its parameters carry the
+    // data's rounding (digits), as the control points do.
+    ASSERT_EQ(r.report.parametrization, ref.report.parametrization);
+    const bool projected = ref.report.parametrization == Parametrization::kGeometric;
     ASSERT_EQ(r.u.size(), ref.u.size());
-    for (std::size_t k = 0; k < r.u.size(); ++k) EXPECT_NEAR(r.u[k], ref.u[k], 1e-12);
+    ASSERT_EQ(r.v_points.size(), ref.v_points.size());
+    for (std::size_t k = 0; k < r.u.size(); ++k)
+      EXPECT_NEAR(r.u[k], ref.u[k], projected ? 10 * m.digits * (1 + std::abs(ref.u[k])) : 1e-12);
+    for (std::size_t k = 0; k < r.v_points.size(); ++k)
+      EXPECT_NEAR(r.v_points[k], ref.v_points[k], 10 * m.digits * (1 + std::abs(ref.v_points[k])));
   }
 }
 

@@ -37,7 +37,7 @@ double worst_ratio_as_written(const FitResult& f, const Rows& rows, const Point&
   double worst = 0;
   for (std::size_t j = 0, i = 0; j < rows.size(); ++j)
     for (std::size_t k = 0; k < rows[j].size(); ++k, ++i) {
-      const auto p = ref.evaluate(f.u[i], f.v[j]);
+      const auto p = ref.evaluate(f.u[i], f.point_v(j, i));
       for (int a = 0; a < 3; ++a) {
         const double limit = tol[a] > 0 ? tol[a] : f.report.roundoff;
         worst = std::max(worst, std::fabs(p[a] - rows[j][k][a]) / limit);

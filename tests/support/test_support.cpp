@@ -126,7 +126,8 @@ Point reference_deviation(const FitResult& fit, const Rows& rows, int stride) {
   Point worst = Point::Zero();
   for (std::size_t j = 0; j < rows.size(); ++j)
     for (std::size_t k = 0; k < rows[j].size(); k += static_cast<std::size_t>(stride)) {
-      const auto s = ref.evaluate(fit.u[rows.offsets()[j] + k], fit.v[j]);
+      const auto s =
+          ref.evaluate(fit.u[rows.offsets()[j] + k], fit.point_v(j, rows.offsets()[j] + k));
       worst = worst.cwiseMax((Point(s[0], s[1], s[2]) - rows[j][k]).cwiseAbs());
     }
   return worst;

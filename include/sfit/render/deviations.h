@@ -11,8 +11,9 @@
 
 namespace sfit::render {
 
-/// S(u_k, v_row(k)) - D_k for every data point (u per point in rows.points() order, v per row),
-/// exactly as check_deviation() measures them.
+/// S(u_k, v_row(k)) - D_k for every data point (u per point in rows.points() order, v per row,
+/// or per point where v.size() is the points' number: FitResult::v_for_points()), exactly as
+/// check_deviation() measures them.
 std::vector<Point> deviations_at_parameters(const Surface& surface, const Rows& rows,
                                             std::span<const double> u, std::span<const double> v);
 

@@ -1,0 +1,38 @@
+// Parametrization::kGeometric (docs/method.md 7.9): each point's parameters from its projection
+// onto a base surface, and their correction by projection onto a fit (Hoschek). Private.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "sfit/rows.h"
+#include "sfit/surface.h"
+
+namespace sfit::detail {
+
+/// Each point's position as fractions of the domain, in rows.points() order.
+struct Fractions {
+  std::vector<double> u, v;
+};
+
+/// The base surface's parameters, from the data alone:
+/// - open rows, open across: the best plane of all points (least squares); u along the rows'
+///   mean direction (first to last point, summed over the rows) projected into the plane, v
+///   across it (increasing with the rows' order); both scaled to [0, 1] over the data.
+/// - closed rows, open across: a swept axis through the rows' centroids (each centroid
+///   weighted by edge length, so crowded points do not pull it); u = the angle around the
+///   row's own plane normal, from a reference direction carried from row to row, / 2 pi in
+///   [0, 1) (a row whose angle does not turn one way is placed by chord length from its
+///   first point's angle); v = the distance along the centroids' path plus the point's
+///   height above its row's plane, scaled to [0, 1].
+/// nullopt where no base surface applies: rows closed across, fewer than 2 rows, or data
+/// that spans no plane.
+std::optional<Fractions> base_surface_fractions(const Rows& rows, bool closed_u, bool closed_v);
+
+/// Parameter correction: each point's (u, v) moved to the closest point of `s` near it (up to
+/// `steps` Gauss-Newton steps in (u, v), each at most one knot span, clamped into an open
+/// domain, wrapped around a closed one), in place (u, v per point at s's counts).
+void project_parameters(const Surface& s, const Rows& rows, std::vector<double>& u,
+                        std::vector<double>& v, int steps, int threads);
+
+}  // namespace sfit::detail

@@ -1,0 +1,416 @@
+#include "geometric_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "fit_frame.h"
+#include "fit_monitor.h"
+#include "geometric_params.h"
+#include "pair_search.h"
+#include "scattered_lsq.h"
+#include "sfit/fold_check.h"
+
+namespace sfit::detail {
+
+namespace {
+
+// Above this many points the pairs are searched on a sample of the rows' points (every
+// step-th of each row, and its last), then verified on all.
+constexpr std::size_t kSamplePoints = 20000;
+// Gauss-Newton steps per point and round.
+constexpr int kNewtonSteps = 3;
+// Pairs with more unknowns than this, or whose factorisation costs more flops, are not tried.
+constexpr long kMaxUnknowns = 20000;
+constexpr double kMaxCost = 4e7;
+// Where a pair misses T by at most this factor, the smoothness weight is lowered (by
+// kSmoothingLower) and the pair refitted once: the term may be what misses. The lower weight
+// still decides the spans without data (as any positive weight does) but pulls far less.
+constexpr double kSmoothingReach = 1.25;
+constexpr double kSmoothingLower = 1e-4;
+
+struct Sample {
+  Rows rows;
+  std::vector<std::size_t> index;  // each sample point's index in the full rows
+};
+
+Sample take_sample(const Rows& rows, std::size_t step) {
+  Sample s;
+  const auto& off = rows.offsets();
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto row = rows[j];
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      if (k % step != 0 && k + 1 != row.size()) continue;
+      s.rows.push_point(row[k]);
+      s.index.push_back(off[j] + k);
+      if (rows.weighted()) s.rows.push_weight(rows.weights()[off[j] + k]);
+    }
+    s.rows.end_row();
+  }
+  return s;
+}
+
+template <class T>
+std::vector<T> pick(const std::vector<T>& x, const std::vector<std::size_t>& index) {
+  std::vector<T> out(index.size());
+  for (std::size_t k = 0; k < index.size(); ++k) out[k] = x[index[k]];
+  return out;
+}
+
+struct Attempt {
+  PairVerdict verdict{false, HUGE_VAL};
+  Surface s;
+  double smoothing = 0;
+};
+
+bool folds(const Surface& s, const Frame& fr) {
+  return geometric_fold(s) > kFoldRelative * fr.box.diagonal();
+}
+
+// Beyond this fraction of the data's diagonal outside its box, a span without data is no
+// longer calm (the guard of fit_frame.h allows a tenth where the data is).
+constexpr double kCalmMargin = 0.5;
+
+}  // namespace
+
+std::vector<char> covered_spans(const Surface& s, std::span<const double> u,
+                                std::span<const double> v) {
+  const int su = s.periodic_u ? s.count_u : s.count_u - s.degree_u;
+  const int sv = s.periodic_v ? s.count_v : s.count_v - s.degree_v;
+  std::vector<char> cell(static_cast<std::size_t>(su) * sv, 0);
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    const int a = std::clamp(static_cast<int>(std::floor(u[k])), 0, su - 1);
+    const int b = std::clamp(static_cast<int>(std::floor(v[k])), 0, sv - 1);
+    cell[static_cast<std::size_t>(a) * sv + b] = 1;
+  }
+  return cell;
+}
+
+bool stays_near_where_covered(const Surface& s, std::span<const double> u,
+                              std::span<const double> v, const BoundingBox& box) {
+  const double d = box.diagonal();
+  auto within = [&](const Point& p, double margin) {
+    return (p.array() >= (box.min.array() - margin)).all() &&
+           (p.array() <= (box.max.array() + margin)).all();
+  };
+  bool hull_inside = true;  // then no sample can leave the box grown by a tenth
+  for (const Point& p : s.control) {
+    if (!within(p, d)) return false;
+    hull_inside = hull_inside && within(p, 0.1 * d);
+  }
+  if (hull_inside) return true;
+  const std::vector<char> cell = covered_spans(s, u, v);
+  const int su = s.periodic_u ? s.count_u : s.count_u - s.degree_u;
+  const int sv = s.periodic_v ? s.count_v : s.count_v - s.degree_v;
+  for (int a = 0; a <= 4 * su; ++a)
+    for (int b = 0; b <= 4 * sv; ++b) {
+      // A sample on a span's edge belongs to every span it touches.
+      bool data = false;
+      for (int x : {(a - 1) / 4, a / 4})
+        for (int y : {(b - 1) / 4, b / 4})
+          if (x >= 0 && y >= 0 && x < su && y < sv && cell[static_cast<std::size_t>(x) * sv + y])
+            data = true;
+      const Point p = s.evaluate(s.u_end() * a / (4 * su), s.v_end() * b / (4 * sv));
+      if (!within(p, data ? 0.1 * d : kCalmMargin * d)) return false;
+    }
+  return true;
+}
+
+namespace {
+
+// The problem's surface at (nu, nv), judged on its rows (the frame's, or a sample of them):
+// lowered smoothing where T was missed by a little; a fold fails the pair.
+// From `start` the weight is lowered by kSmoothingLower while T is missed: always above
+// kSmoothing (a weight asked for), then once where T was missed by at most kSmoothingReach.
+Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, int nu, int nv,
+                DeviationCheck* out = nullptr, double start = kSmoothing) {
+  Attempt a;
+  const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
+  for (double w = start; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {
+    Surface s;
+    if (!sp.solve(nu, nv, w, s)) return a;
+    PairVerdict verdict = fr.judge(s, u, v, out, sample, false);
+    if (verdict.holds && !stays_near_where_covered(s, u, v, fr.centred_box)) verdict.holds = false;
+    a = {verdict, std::move(s), w};
+    if (verdict.holds) {
+      if (folds(a.s, fr)) a.verdict.holds = false;
+      return a;
+    }
+    if (verdict.ratio > kSmoothingReach && w <= kSmoothing) return a;
+  }
+  return a;
+}
+
+// The surfaces that held, by pair (the final one is not solved again).
+using Kept = std::map<std::pair<int, int>, Attempt>;
+
+PairOracle oracle_for(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, bool report,
+                      Kept* kept = nullptr) {
+  return PairOracle([&sp, &fr, sample, report, kept](int nu, int nv) {
+    if (static_cast<long>(nu) * nv > kMaxUnknowns || sp.cost(nu, nv) > kMaxCost ||
+        static_cast<std::size_t>(nu) * nv > sp.rows().total_points())
+      return PairVerdict{false, HUGE_VAL};
+    Attempt a = attempt(sp, fr, sample, nu, nv);
+    const PairVerdict v = a.verdict;
+    if (kept && v.holds) (*kept)[{nu, nv}] = std::move(a);
+    if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, report && v.holds);
+    return v;
+  });
+}
+
+PairRange range_for(const ScatteredProblem& sp, const Rows& rows) {
+  std::size_t longest = 0;
+  for (std::size_t j = 0; j < rows.size(); ++j) longest = std::max(longest, rows[j].size());
+  // v is no row's index: as many counts across as along (a few rows of long rows may need
+  // more control points across than rows where each point has its own v).
+  const int most = static_cast<int>(std::max(longest, rows.size()));
+  return PairRange{sp.min_u(), std::max(sp.min_u(), most), sp.min_v(), std::max(sp.min_v(), most),
+                   [&sp](int nu, int nv) {
+                     return static_cast<long>(nu) * nv <= kMaxUnknowns &&
+                            sp.cost(nu, nv) <= kMaxCost;
+                   }};
+}
+
+// Fractions of a surface's parameters (u, v at its counts).
+void to_fractions(const Surface& s, const std::vector<double>& u, const std::vector<double>& v,
+                  std::vector<double>& fu, std::vector<double>& fv) {
+  fu.resize(u.size());
+  fv.resize(v.size());
+  const double ue = s.u_end(), ve = s.v_end();
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    fu[k] = u[k] / ue;
+    if (s.periodic_u && fu[k] >= 1) fu[k] = 0;
+    fv[k] = v[k] / ve;
+  }
+}
+
+}  // namespace
+
+double geometric_fold(const Surface& s) {
+  const int n = 2 * s.count_v + 1;
+  std::vector<double> grid(static_cast<std::size_t>(n));
+  const double e = s.v_end();
+  for (int k = 0; k < n; ++k) grid[k] = s.periodic_v ? e * k / n : e * k / (n - 1);
+  return fold_measure(s, grid);
+}
+
+std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
+                                             int corrections, long* pairs) {
+  long tried = 0;
+  std::optional<GeometricFit> g = search_geometric_counted(fr, o, bound, corrections, tried);
+  if (pairs) *pairs = tried;
+  return g;
+}
+
+std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
+                                                     long bound, int corrections, long& tried) {
+  std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
+  if (!f) return std::nullopt;
+  const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
+  const std::size_t points = fr.centred.total_points();
+  // Never more control points than points.
+  bound = std::min<long>(bound, static_cast<long>(points));
+  const std::size_t step =
+      points > kSamplePoints ? (points + kSamplePoints - 1) / kSamplePoints : 1;
+  std::optional<Sample> sample;
+  if (step > 1) sample = take_sample(fr.centred, step);
+  const Rows& srows = sample ? sample->rows : fr.centred;
+  const Rows* sptr = sample ? &sample->rows : nullptr;
+  std::vector<double> fu = sample ? pick(f->u, sample->index) : f->u;
+  std::vector<double> fv = sample ? pick(f->v, sample->index) : f->v;
+  const std::vector<double> fu0 = fu, fv0 = fv;
+  // Coarse: the pair on the sample (or all points), at the base surface's parameters.
+  auto sp = std::make_unique<ScatteredProblem>(srows, spec, fu, fv);
+  PairRange range = range_for(*sp, srows);
+  PairOracle first = oracle_for(*sp, fr, sptr, !sample);
+  // A first bound from the diagonal (k, k), k growing by 1.5: a few small solves, after which
+  // the pair search never tries a pair with more control points than it.
+  long start = bound;
+  for (int k = std::max(range.min_u, range.min_v);
+       static_cast<long>(k) * k < bound && range.affordable(k, k);
+       k = std::max(k + 1, static_cast<int>(k * 1.5))) {
+    if (first(k, k).holds) {
+      start = static_cast<long>(k) * k + 1;
+      break;
+    }
+  }
+  const PairChoice c = search_pairs(range, start, first);
+  tried += first.tried();
+  if (c.nu == 0) return std::nullopt;
+  int nu = c.nu, nv = c.nv;
+  std::string stop = c.stop;
+  // Correction: project the points onto the fit, refit, descend; while the count falls.
+  int rounds = 0;
+  for (int round = 0; round < corrections; ++round) {
+    const Attempt at = attempt(*sp, fr, sptr, nu, nv);
+    if (!at.verdict.holds) break;
+    std::vector<double> u = sp->u_at(nu), v = sp->v_at(nv);
+    project_parameters(at.s, srows, u, v, kNewtonSteps, fr.threads);
+    std::vector<double> nfu, nfv;
+    to_fractions(at.s, u, v, nfu, nfv);
+    auto next = std::make_unique<ScatteredProblem>(srows, spec, nfu, nfv);
+    PairOracle o2 = oracle_for(*next, fr, sptr, !sample);
+    if (!o2(nu, nv).holds) {
+      tried += o2.tried();
+      break;
+    }
+    const auto [a, b] = descend(nu, nv, range, o2);
+    tried += o2.tried();
+    if (static_cast<long>(a) * b >= static_cast<long>(nu) * nv) break;
+    nu = a;
+    nv = b;
+    sp = std::move(next);
+    fu = std::move(nfu);
+    fv = std::move(nfv);
+    ++rounds;
+  }
+  GeometricFit out;
+  out.corrections = rounds;
+  std::vector<double> full_u = f->u, full_v = f->v;
+  if (sample && rounds > 0) {
+    // The sample's corrections carried to every point: linear along each row between the
+    // sample points that bracket it.
+    const auto& off = fr.centred.offsets();
+    std::size_t s0 = 0;
+    for (std::size_t j = 0; j < fr.centred.size(); ++j) {
+      const std::size_t begin = s0;
+      while (s0 < sample->index.size() && sample->index[s0] < off[j + 1]) ++s0;
+      for (std::size_t s = begin; s < s0; ++s) {
+        const std::size_t k0 = sample->index[s];
+        const double du0 = fu[s] - fu0[s], dv0 = fv[s] - fv0[s];
+        const bool has_next = s + 1 < s0;
+        const std::size_t k1 = has_next ? sample->index[s + 1] : k0 + 1;
+        const double du1 = has_next ? fu[s + 1] - fu0[s + 1] : du0,
+                     dv1 = has_next ? fv[s + 1] - fv0[s + 1] : dv0;
+        for (std::size_t k = k0; k < k1 && k < off[j + 1]; ++k) {
+          const double t = static_cast<double>(k - k0) / static_cast<double>(k1 - k0);
+          double u = full_u[k] + (1 - t) * du0 + t * du1;
+          if (o.closed_u) {
+            u -= std::floor(u);
+            if (u >= 1) u = 0;
+          } else {
+            u = std::clamp(u, 0.0, 1.0);
+          }
+          full_u[k] = u;
+          full_v[k] = std::clamp(full_v[k] + (1 - t) * dv0 + t * dv1, 0.0, 1.0);
+        }
+      }
+    }
+  } else if (!sample) {
+    full_u = fu;
+    full_v = fv;
+  }
+  // Fine: verify on every point, raise until it holds, descend while one fewer holds.
+  const ScatteredProblem full(fr.centred, spec, std::move(full_u), std::move(full_v));
+  Kept kept;
+  PairOracle all = oracle_for(full, fr, nullptr, true, &kept);
+  if (sample) {
+    bool holds = all(nu, nv).holds;
+    for (int k = 1; !holds && k <= 8; ++k) {
+      for (const auto& [a, b] :
+           {std::pair{nu + k, nv}, std::pair{nu, nv + k}, std::pair{nu + k, nv + k}}) {
+        if (static_cast<long>(a) * b >= bound) continue;
+        if (all(a, b).holds) {
+          nu = a;
+          nv = b;
+          holds = true;
+          break;
+        }
+      }
+    }
+    if (!holds) {
+      tried += all.tried();
+      return std::nullopt;
+    }
+    std::tie(nu, nv) = descend(nu, nv, range_for(full, fr.centred), all);
+    stop = "minimal (searched on every " + std::to_string(step) +
+           "th point of each row, verified on all)";
+  }
+  tried += all.tried();
+  auto it = kept.find({nu, nv});
+  const Attempt at = it != kept.end() ? std::move(it->second) : attempt(full, fr, nullptr, nu, nv);
+  if (!at.verdict.holds) return std::nullopt;
+  out.surface = at.s;
+  out.u = full.u_at(nu);
+  out.v = full.v_at(nv);
+  out.smoothing = at.smoothing;
+  out.tried = tried;
+  out.stop = stop;
+  if (rounds > 0)
+    out.stop +=
+        "; parameters corrected " + std::to_string(rounds) + " time" + (rounds > 1 ? "s" : "");
+  // The part of the domain the data covers (the rest decided by the smoothness term).
+  const std::vector<char> cells = covered_spans(out.surface, out.u, out.v);
+  const long covered = std::count(cells.begin(), cells.end(), 1);
+  if (covered < static_cast<long>(cells.size()))
+    out.stop += "; data in " + std::to_string(covered) + " of the " + std::to_string(cells.size()) +
+                " knot spans";
+  return out;
+}
+
+std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOptions& o, int nu,
+                                                int nv, double smoothing) {
+  std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
+  if (!f) return std::nullopt;
+  const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
+  auto sp = std::make_unique<ScatteredProblem>(fr.centred, spec, std::move(f->u), std::move(f->v));
+  Attempt at = attempt(*sp, fr, nullptr, nu, nv, nullptr, smoothing);
+  if (at.s.control.empty()) return std::nullopt;
+  GeometricFit g;
+  g.tried = 1;
+  // Where the base surface's parameters miss T, the correction (as in the search) while the
+  // worst deviation falls: the pair the search chose held at corrected parameters.
+  for (int round = 0; round < kCorrectionRounds && !at.verdict.holds; ++round) {
+    std::vector<double> u = sp->u_at(nu), v = sp->v_at(nv);
+    project_parameters(at.s, fr.centred, u, v, kNewtonSteps, fr.threads);
+    std::vector<double> nfu, nfv;
+    to_fractions(at.s, u, v, nfu, nfv);
+    auto next = std::make_unique<ScatteredProblem>(fr.centred, spec, nfu, nfv);
+    Attempt a = attempt(*next, fr, nullptr, nu, nv, nullptr, smoothing);
+    ++g.tried;
+    if (a.s.control.empty() || !(a.verdict.holds || a.verdict.ratio < at.verdict.ratio)) break;
+    at = std::move(a);
+    sp = std::move(next);
+    ++g.corrections;
+  }
+  g.surface = at.s;
+  g.u = sp->u_at(nu);
+  g.v = sp->v_at(nv);
+  g.smoothing = at.smoothing;
+  g.stop = "counts given";
+  return g;
+}
+
+FitResult assemble_geometric(const Frame& fr, GeometricFit g, const DeviationCheck& c,
+                             const FitOptions& o) {
+  ShapeMeasures m;
+  m.fold = geometric_fold(g.surface);
+  // The box excursion on a 64 x 64 grid of the surface.
+  const BoundingBox& b = fr.centred_box;
+  const double ue = g.surface.u_end(), ve = g.surface.v_end();
+  for (int i = 0; i <= 64; ++i)
+    for (int k = 0; k <= 64; ++k) {
+      const Point p = g.surface.evaluate(ue * i / 64, ve * k / 64);
+      const Point out = (p - b.max).cwiseMax(b.min - p).cwiseMax(0.0);
+      m.box_excursion = std::max(m.box_excursion, out.norm());
+    }
+  // Each row's v: the mean of its points' v (for what reads one v per row).
+  std::vector<double> row_v(fr.centred.size(), 0.0);
+  const auto& off = fr.centred.offsets();
+  for (std::size_t j = 0; j < row_v.size(); ++j) {
+    double sum = 0;
+    for (std::size_t k = off[j]; k < off[j + 1]; ++k) sum += g.v[k];
+    row_v[j] = off[j + 1] > off[j] ? sum / static_cast<double>(off[j + 1] - off[j]) : 0.0;
+  }
+  FitResult out = frame_result(std::move(g.surface), std::move(g.u), std::move(row_v), FitReport{},
+                               c, m, fr.centred, fr.centre, fr.roundoff, o);
+  out.v_points = std::move(g.v);
+  out.report.method = FitMethod::kSurface;
+  out.report.parametrization = Parametrization::kGeometric;
+  out.report.parametrization_across = Parametrization::kGeometric;
+  out.report.norm = FitNorm::kL2;
+  return out;
+}
+
+}  // namespace sfit::detail

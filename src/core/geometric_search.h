@@ -1,0 +1,74 @@
+// The surface search at Parametrization::kGeometric (docs/method.md 7.9): the fewest nu x nv
+// whose scattered least-squares fit (scattered_lsq.h) holds T at every point, with the
+// points' parameters from a base surface (geometric_params.h), corrected by projection while
+// that lowers the count. Private to the surface method.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "scattered_lsq.h"
+#include "search_frame.h"
+
+namespace sfit::detail {
+
+/// Rounds of parameter correction (each: project, refit, descend) while the count falls.
+inline constexpr int kCorrectionRounds = 3;
+
+/// A surface of the rule (centred) with its points' parameters at its counts.
+struct GeometricFit {
+  Surface surface;
+  std::vector<double> u, v;  ///< per point, rows.points() order
+  std::string stop;          ///< why the search stopped there
+  long tried = 0;            ///< pairs solved
+  int corrections = 0;       ///< rounds of parameter correction that lowered the count
+  double smoothing = 0;      ///< the smoothness weight the surface was made with
+};
+
+/// Coarse to fine: on large data the pairs are searched on every step-th point of each row
+/// (search_pairs(), below `bound` and below the points' number), the parameters corrected there
+/// (project_parameters(), refit, descend: rounds while the count falls), then the pair is
+/// verified on every point (raised until it holds, descended while one fewer holds). A pair
+/// holds when the frame's judge passes it (every point within T, the guards) and the surface
+/// does not fold. nullopt: no base surface, or nothing below `bound` held.
+/// `corrections`: the most rounds of parameter correction (tests compare 0 with the default).
+/// `pairs`: set to the pairs solved, whether or not a surface is found.
+std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
+                                             int corrections = kCorrectionRounds,
+                                             long* pairs = nullptr);
+/// search_geometric(), adding the pairs solved to `tried` as it goes.
+std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
+                                                     long bound, int corrections, long& tried);
+
+/// The rule's surface at exactly (nu, nv) (FitOptions::counts), holding or not; nullopt where
+/// the rule has no base surface for the rows. The smoothness weight starts at `smoothing`
+/// (relative, scattered_lsq.h) and is lowered while the surface misses T (GeometricFit::
+/// smoothing says which it was made with).
+std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOptions& o, int nu,
+                                                int nv, double smoothing = kSmoothing);
+
+/// The result of a surface of the rule: assemble() with the shape measured on the surface
+/// (the fold on columns sampled evenly across the domain; the rows are no iso-curves, so
+/// row_gap is 0) and v_points set (v: each row's mean v).
+FitResult assemble_geometric(const Frame& fr, GeometricFit g, const DeviationCheck& c,
+                             const FitOptions& o);
+
+/// The knot spans (cells, u-major: a * spans_v + b) that hold a data point at parameters u, v
+/// (per point at s's counts).
+std::vector<char> covered_spans(const Surface& s, std::span<const double> u,
+                                std::span<const double> v);
+
+/// The rule's guard (in place of fit_frame.h's): every control point within the data's box
+/// grown by its diagonal; the surface, sampled 4 times per span each way, within the box
+/// grown by 1/10 of the diagonal in the spans that hold data, and by 1/2 (calm) in the spans
+/// without (clipped corners, holes, outside an outline), where the smoothness term alone
+/// decides it.
+bool stays_near_where_covered(const Surface& s, std::span<const double> u,
+                              std::span<const double> v, const BoundingBox& box);
+
+/// The fold of a surface over evenly spaced columns (fold_measure()).
+double geometric_fold(const Surface& s);
+
+}  // namespace sfit::detail

@@ -1,0 +1,228 @@
+#include "scattered_lsq.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "basis.h"
+#include "knots.h"
+#include "parallel.h"
+
+namespace sfit::detail {
+
+namespace {
+
+// Points per block of the assembly (fixed, so the sums do not depend on the thread count).
+constexpr std::size_t kBlock = 1 << 15;
+
+double domain(int degree, int count, bool closed) {
+  return domain_end(degree, count, closed);
+}
+
+}  // namespace
+
+ScatteredProblem::ScatteredProblem(const Rows& rows, const ScatteredSpec& spec,
+                                   std::vector<double> fu, std::vector<double> fv)
+    : rows_(rows), spec_(spec), fu_(std::move(fu)), fv_(std::move(fv)) {}
+
+int ScatteredProblem::min_u() const {
+  return spec_.closed_u ? 2 * spec_.degree_u + 1 : spec_.degree_u + 1;
+}
+int ScatteredProblem::min_v() const {
+  return spec_.closed_v ? 2 * spec_.degree_v + 1 : spec_.degree_v + 1;
+}
+
+std::vector<double> ScatteredProblem::u_at(int nu) const {
+  const double e = domain(spec_.degree_u, nu, spec_.closed_u);
+  std::vector<double> u(fu_.size());
+  for (std::size_t k = 0; k < u.size(); ++k) u[k] = fu_[k] * e;
+  return u;
+}
+std::vector<double> ScatteredProblem::v_at(int nv) const {
+  const double e = domain(spec_.degree_v, nv, spec_.closed_v);
+  std::vector<double> v(fv_.size());
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = fv_[k] * e;
+  return v;
+}
+
+double ScatteredProblem::cost(int nu, int nv) const {
+  const int p = spec_.degree_u, q = spec_.degree_v;
+  const double band =
+      spec_.closed_u ? static_cast<double>(q + 1) * nu
+                     : std::min(static_cast<double>(q) * nu + p, static_cast<double>(p) * nv + q);
+  return 0.5 * static_cast<double>(nu) * nv * band * band;
+}
+
+bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) const {
+  const int p = spec_.degree_u, q = spec_.degree_v;
+  const bool cu = spec_.closed_u, cv = spec_.closed_v;
+  if (nu < min_u() || nv < min_v()) return false;
+  const int wu = 2 * p + 1, wv = 2 * q + 1, W = wu * wv;
+  const int n_local = (p + 1) * (q + 1);
+  const std::size_t N = static_cast<std::size_t>(nu) * nv;
+  // Offsets in the band store of local product (x, y): depends on the local indices only.
+  std::vector<int> offset(static_cast<std::size_t>(n_local) * n_local);
+  for (int x = 0; x < n_local; ++x)
+    for (int y = 0; y < n_local; ++y)
+      offset[x * n_local + y] =
+          (y / (q + 1) - x / (q + 1) + p) * wv + (y % (q + 1) - x % (q + 1) + q);
+  const double eu = domain(p, nu, cu), ev = domain(q, nv, cv);
+  const std::vector<Point>& pts = rows_.points();
+  const std::vector<double>& wts = rows_.weights();
+  const std::size_t n = pts.size(), blocks = (n + kBlock - 1) / kBlock;
+  const int threads = std::max(1, std::min<int>(spec_.threads, static_cast<int>(blocks)));
+  struct Part {
+    std::vector<double> band;
+    std::vector<Point> rhs;
+  };
+  // One store per thread slot; blocks are summed into slot (block % threads) in order, then
+  // the slots in order: the same for a given thread count. For any count: per block.
+  std::vector<Part> part(blocks);
+  auto run_block = [&](std::size_t b) {
+    Part& pt = part[b];
+    pt.band.assign(N * W, 0.0);
+    pt.rhs.assign(N, Point::Zero());
+    std::array<double, kMaxDegree + 1> bu, bv;
+    std::vector<double> w(n_local);
+    std::vector<std::size_t> idx(n_local);
+    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
+      const int fu = eval_basis(p, nu, cu, fu_[k] * eu, bu.data());
+      const int fv = eval_basis(q, nv, cv, fv_[k] * ev, bv.data());
+      const double weight = wts.empty() ? 1.0 : wts[k];
+      for (int a = 0; a <= p; ++a)
+        for (int c = 0; c <= q; ++c) {
+          const int x = a * (q + 1) + c;
+          w[x] = bu[a] * bv[c];
+          idx[x] = static_cast<std::size_t>(wrap_index(fu + a, nu)) * nv + wrap_index(fv + c, nv);
+        }
+      for (int x = 0; x < n_local; ++x) {
+        const double wx = weight * w[x];
+        double* row = pt.band.data() + idx[x] * W;
+        const int* off = offset.data() + x * n_local;
+        for (int y = 0; y < n_local; ++y) row[off[y]] += wx * w[y];
+        pt.rhs[idx[x]] += wx * pts[k];
+      }
+    }
+  };
+  // Memory: a store per block would be blocks x N x W; merge as we go in fixed groups.
+  std::vector<double> band(N * W, 0.0);
+  std::vector<Point> rhs(N, Point::Zero());
+  for (std::size_t g = 0; g < blocks; g += static_cast<std::size_t>(threads)) {
+    const std::size_t m = std::min<std::size_t>(threads, blocks - g);
+    parallel_for(m, threads, [&](std::size_t i) { run_block(g + i); });
+    for (std::size_t i = 0; i < m; ++i) {
+      Part& pt = part[g + i];
+      for (std::size_t e = 0; e < band.size(); ++e) band[e] += pt.band[e];
+      for (std::size_t e = 0; e < N; ++e) rhs[e] += pt.rhs[e];
+      pt = Part{};
+    }
+  }
+  double trace = 0;
+  const int centre = p * wv + q;
+  for (std::size_t I = 0; I < N; ++I) trace += band[I * W + centre];
+  if (!(trace > 0)) return false;
+  const double lambda = smoothing * trace / static_cast<double>(N);
+  // The banded system in the ordering of the narrower band: u-major (i nv + l, band p nv + q)
+  // or v-major (l nu + i, band q nu + p; always where u is closed, its wrap then staying within
+  // a block: band (q + 1) nu - 1).
+  const bool v_major = cu || static_cast<long>(q) * nu + p < static_cast<long>(p) * nv + q;
+  const long bw = cu ? static_cast<long>(q + 1) * nu - 1
+                     : (v_major ? static_cast<long>(q) * nu + p : static_cast<long>(p) * nv + q);
+  if (cv && !v_major) return false;  // (not reached: the rule is open across)
+  const long Nb = static_cast<long>(N);
+  const long b = std::min(bw, Nb - 1), w1 = b + 1;
+  auto pos = [&](int i, int l) -> long {
+    return v_major ? static_cast<long>(l) * nu + i : static_cast<long>(i) * nv + l;
+  };
+  std::vector<double> L(static_cast<std::size_t>(Nb * w1), 0.0);
+  // L(r, c) for c <= r at L[r w1 + c - r + b].
+  auto add = [&](long r, long c, double x) {
+    if (c > r) std::swap(r, c);
+    if (r - c > b) return false;
+    L[static_cast<std::size_t>(r * w1 + c - r + b)] += x;
+    return true;
+  };
+  for (std::size_t I = 0; I < N; ++I) {
+    const int i = static_cast<int>(I / nv), l = static_cast<int>(I % nv);
+    const long r = pos(i, l);
+    for (int da = -p; da <= p; ++da)
+      for (int dc = -q; dc <= q; ++dc) {
+        const double val = band[I * W + (da + p) * wv + (dc + q)];
+        if (val == 0) continue;
+        const long c = pos((i + da + nu) % nu, (l + dc + nv) % nv);
+        if (c > r) continue;  // the upper triangle: its mirror is added from the other side
+        if (!add(r, c, val)) return false;
+      }
+  }
+  // Second differences of the net along u (for each l) and along v (for each i).
+  auto add_difference = [&](long a0, long a1, long a2) {
+    const long ids[3] = {a0, a1, a2};
+    const double k[3] = {1, -2, 1};
+    for (int x = 0; x < 3; ++x)
+      for (int y = 0; y <= x; ++y) {
+        // Diagonal once; an off-diagonal pair once (lower triangle), with its own weight.
+        if (ids[x] == ids[y] && x != y) {
+          add(ids[x], ids[y], 2 * lambda * k[x] * k[y]);
+        } else {
+          add(ids[x], ids[y], lambda * k[x] * k[y]);
+        }
+      }
+  };
+  if (lambda > 0) {
+    for (int l = 0; l < nv; ++l)
+      for (int i = cu ? 0 : 1; i < (cu ? nu : nu - 1); ++i)
+        add_difference(pos((i - 1 + nu) % nu, l), pos(i, l), pos((i + 1) % nu, l));
+    for (int i = 0; i < nu; ++i)
+      for (int l = cv ? 0 : 1; l < (cv ? nv : nv - 1); ++l)
+        add_difference(pos(i, (l - 1 + nv) % nv), pos(i, l), pos(i, (l + 1) % nv));
+  }
+  // Banded Cholesky, L L^T, in place.
+  for (long r = 0; r < Nb; ++r) {
+    double* Lr = L.data() + r * w1 - r + b;  // Lr[c] = L(r, c)
+    for (long c = std::max(0L, r - b); c <= r; ++c) {
+      const double* Lc = L.data() + c * w1 - c + b;
+      // Four partial sums: the dot product vectorises (fixed order: the same bits each run).
+      double s4[4] = {0, 0, 0, 0};
+      long k = std::max(0L, r - b);
+      for (; k + 4 <= c; k += 4)
+        for (int e = 0; e < 4; ++e) s4[e] += Lr[k + e] * Lc[k + e];
+      for (; k < c; ++k) s4[0] += Lr[k] * Lc[k];
+      const double sum = Lr[c] - ((s4[0] + s4[1]) + (s4[2] + s4[3]));
+      if (c == r) {
+        if (!(sum > 1e-13 * (trace / static_cast<double>(N)))) return false;
+        Lr[c] = std::sqrt(sum);
+      } else {
+        Lr[c] = sum / Lc[c];
+      }
+    }
+  }
+  std::vector<Point> x(N);
+  for (std::size_t I = 0; I < N; ++I)
+    x[static_cast<std::size_t>(pos(static_cast<int>(I / nv), static_cast<int>(I % nv)))] = rhs[I];
+  for (long r = 0; r < Nb; ++r) {
+    const double* Lr = L.data() + r * w1 - r + b;
+    Point sum = x[r];
+    for (long k = std::max(0L, r - b); k < r; ++k) sum -= Lr[k] * x[k];
+    x[r] = sum / Lr[r];
+  }
+  for (long r = Nb - 1; r >= 0; --r) {
+    const double* Lr = L.data() + r * w1 - r + b;
+    x[r] /= Lr[r];
+    for (long k = std::max(0L, r - b); k < r; ++k) x[k] -= Lr[k] * x[r];
+  }
+  out.degree_u = p;
+  out.degree_v = q;
+  out.periodic_u = cu;
+  out.periodic_v = cv;
+  out.count_u = nu;
+  out.count_v = nv;
+  out.control.resize(N);
+  for (std::size_t I = 0; I < N; ++I) {
+    out.control[I] =
+        x[static_cast<std::size_t>(pos(static_cast<int>(I / nv), static_cast<int>(I % nv)))];
+    if (!out.control[I].allFinite()) return false;
+  }
+  return true;
+}
+
+}  // namespace sfit::detail
