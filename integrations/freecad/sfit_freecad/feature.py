@@ -296,7 +296,10 @@ def write_report(obj, result, closed_arg):
     obj.ClosedUsed = closed_arg or "none"
     obj.DataPoints = len(pts)
     obj.Rows = len(sizes)
-    dev = s(np.asarray(result.u), np.repeat(np.asarray(result.v), sizes)) - pts
+    # Each point's v: its own where the rule gives one (parameters geometric), else its row's.
+    v_points = np.asarray(result.v_points)
+    v = v_points if v_points.size else np.repeat(np.asarray(result.v), sizes)
+    dev = s(np.asarray(result.u), v) - pts
     t = np.where(np.asarray(tol) > 0, np.asarray(tol), np.inf)
     ratio = np.max(np.abs(dev) / t, axis=1)
     obj.DataPointList = [FreeCAD.Vector(*p) for p in pts]

@@ -59,9 +59,10 @@ def deviation_record(obj, name):
     surf = face.Surface
     tol = [float(x) for x in fit.report["tolerance"]]
     worst_dist, worst_axis = 0.0, [0.0, 0.0, 0.0]
-    vs = []
-    for v, n in zip(fit.v, fit.row_sizes):
-        vs += [float(v)] * int(n)
+    vs = [float(v) for v in fit.v_points]  # each point's own v (parameters geometric)
+    if not vs:
+        for v, n in zip(fit.v, fit.row_sizes):
+            vs += [float(v)] * int(n)
     for p, u, v in zip(fit.points, fit.u, vs):
         pt = V(*[float(c) for c in p])
         worst_dist = max(worst_dist, Part.Vertex(pt).distToShape(face)[0])

@@ -237,8 +237,10 @@ def main():
               f"reopened: {name}'s saved face is the fitted one (poles within "
               f"{pole_diff(saved['poles'], before):.3g} of a size {scale:.3g})")
         # The sketches come back from the file's text (FreeCAD writes their numbers as text),
-        # so the refit is compared within 1e-9 of the size, not bit for bit.
-        check(pole_diff(refit["poles"], before) <= 1e-9 * scale and r["within"] and
+        # so the refit is compared within 5e-8 of the size, not bit for bit: the geometric
+        # rule's parameters come from projections (a few Newton steps each), which carry the
+        # text's round-off into the poles at some 5e-9 of the size.
+        check(pole_diff(refit["poles"], before) <= 5e-8 * scale and r["within"] and
               not any(s in r["state"] for s in ("Invalid", "Error")),
               f"reopened: {name} recomputed refits to the same poles (within "
               f"{pole_diff(refit['poles'], before):.3g}), within T")
