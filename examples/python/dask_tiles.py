@@ -65,7 +65,9 @@ def fit_tile(key, z, x0, y0, dx, dy, tol, degree, band):
     grid[..., 1] = y[:, None]
     grid[..., 2] = z
     fit = sfit.fit(grid, tol=tol, degree=degree, threads=1)
-    fitted = fit.surface(fit.u, np.repeat(fit.v, fit.row_sizes)).reshape(rows, cols, 3)
+    # Each point's v: its own where the rule gives one (parameters geometric), else its row's.
+    v = fit.v_points if len(fit.v_points) else np.repeat(fit.v, fit.row_sizes)
+    fitted = fit.surface(fit.u, v).reshape(rows, cols, 3)
     r = fit.report
     return {
         "tile": list(key),

@@ -35,7 +35,8 @@ def main(argv=None):
     v = np.linspace(0, s.v_end, a.samples + (1 if s.periodic[1] else 0))
     xyz = s(u, v, grid=True)
 
-    v_of_point = np.repeat(fit.v, fit.row_sizes)
+    # Each point's v: its own where the rule gives one (parameters geometric), else its row's.
+    v_of_point = fit.v_points if len(fit.v_points) else np.repeat(fit.v, fit.row_sizes)
     dev = np.abs(s(fit.u, v_of_point) - fit.points)
     t = np.array(r["tolerance"])
     used = (dev / np.where(t > 0, t, np.inf)).max(axis=1)
