@@ -6,8 +6,9 @@ file: scan lines clipped by a round boundary, a range image with holes, rows sam
 hand-drawn closed contours, sections with sharp corners, a terrain grid of 10^5 points, and one
 case moved far from the origin. For each, at 1e-2 and 1e-3 of the bounding-box diagonal, the
 table gives the points, the control points of the default fit (nu x nv), their ratio to the
-points, the rule that made the surface, whether the report says it holds T, the fold measure
-and the CLI's wall time.
+points, the rule that made the surface, whether the report says it holds T, the fold measure,
+the CLI's wall time, and whether the report says that the data's noise exceeds T (where more
+control points than points are allowed).
 
     bench/scan_cases.py build/apps/sfit/sfit [--only NAME] [--tol 1e-2,1e-3]
 """
@@ -73,16 +74,22 @@ def uneven_rows(rng):
     return rows
 
 
-def closed_contours(rng):
+def closed_contours(rng, wobble=0.0003):
     """30 hand-drawn closed sections of a varying tube: each with its own point count, start
-    angle and uneven angular spacing, a little wobble of the hand."""
+    angle and uneven angular spacing, a little wobble of the hand (`wobble` in radius)."""
     rows = []
     for k, zc in enumerate(np.linspace(0, 3, 30)):
         n = int(rng.integers(40, 140))
         a = np.sort(rng.uniform(0, 2 * math.pi, n)) + rng.uniform(0, 2 * math.pi)
-        r = 1 + 0.3 * math.sin(zc) + 0.15 * np.cos(2 * a) + rng.normal(0, 0.002, n)
+        r = 1 + 0.3 * math.sin(zc) + 0.15 * np.cos(2 * a) + rng.normal(0, wobble, n)
         rows.append(np.column_stack([r * np.cos(a) * 1.4, r * np.sin(a), np.full(n, zc)]))
     return rows
+
+
+def shaky_closed_contours(rng):
+    """The closed sections drawn by a shakier hand: a wobble of up to 0.007, above T at 1e-3
+    (0.0055), so T forces interpolation there, which the report must say."""
+    return closed_contours(rng, wobble=0.002)
 
 
 def cornered_sections(rng):
@@ -135,6 +142,7 @@ CASES = {
     "range_image_holes": (range_image_with_holes, []),
     "uneven_rows": (uneven_rows, []),
     "closed_contours": (closed_contours, ["--closed", "u"]),
+    "shaky_closed": (shaky_closed_contours, ["--closed", "u"]),
     "cornered_sections": (cornered_sections, []),
     "terrain_grid_1e5": (terrain_grid, []),
     "far_offset": (far_offset, []),
@@ -159,7 +167,7 @@ def main():
     a = ap.parse_args()
     tols = [float(t) for t in a.tol.split(",")]
     print(f"{'case':<20} {'tol':>6} {'points':>8} {'nu x nv':>11} {'cp/pts':>7} {'rule':>12} "
-          f"{'held':>5} {'fold':>8} {'s':>7}")
+          f"{'held':>5} {'fold':>8} {'s':>7}  note")
     with tempfile.TemporaryDirectory() as tmp:
         for name, (make, opts) in CASES.items():
             if a.only and a.only not in name:
@@ -183,7 +191,8 @@ def main():
                 cu, cv = r["control_points"] if isinstance(r["control_points"], list) else (0, 0)
                 print(f"{name:<20} {tol:>6g} {npts:>8} {cu:>5} x {cv:<5} {cu * cv / npts:>7.3f} "
                       f"{r['parameters']:>12} {str(r['within_tolerance']):>5} "
-                      f"{r['fold']:>8.2g} {dt:>7.2f}")
+                      f"{r['fold']:>8.2g} {dt:>7.2f}  "
+                      f"{'report: noise exceeds T' if 'noise exceeds T' in r['stop_reason'] else ''}")
                 sys.stdout.flush()
 
 
