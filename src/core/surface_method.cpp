@@ -185,8 +185,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
     if (rule == Parametrization::kGeometric) {
       // Its own search (scattered parameters, geometric_search.h), first. On large data its
       // count bounds the other rules' searches (they cost most there); on small data they run
-      // with the bounds they had without it (a tighter bound can end a column's search at a
-      // top pair that fails a guard), and it is kept after them where it is smaller.
+      // with the bounds they had without it; it is kept after them where it is smaller.
       if (!o.closed_v && rows.size() < static_cast<std::size_t>(o.degree_v) + 1) continue;
       searched.push_back(rule);
       // The rows' floor at chord-length positions (count_floor.h; a heuristic here too: a
@@ -208,10 +207,10 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
       } else if (monitor) {
         monitor->found(geo->surface.count_u, geo->surface.count_v);
       }
-      if (geo && step > 1) {
-        bound = n;
-        best = Candidate{rule, FitNorm::kL2, geo->surface.count_u, geo->surface.count_v, geo->stop};
-      }
+      // On large data the row rules search below twice its count (not below its count: a
+      // tight bound can end their search at a pair that fails a guard, and miss a smaller
+      // one); it is kept after them where it is smaller.
+      if (geo && step > 1) bound = std::min(bound, 2 * n);
       continue;
     }
     const CountFloor floor = count_floor(fr.centred, os, rule, fr.roundoff);
