@@ -33,13 +33,7 @@ DeviationCheck check_rows(const Surface& s, const Rows& rows, std::span<const do
       const int fu = eval_basis(s.degree_u, s.count_u, s.periodic_u, u[off[j] + k], bu.data());
       Point p = Point::Zero();
       if (per_point) {
-        const int fw = eval_basis(s.degree_v, s.count_v, s.periodic_v, v[off[j] + k], bv.data());
-        for (int a = 0; a <= s.degree_u; ++a) {
-          Point q = Point::Zero();
-          for (int b = 0; b <= s.degree_v; ++b)
-            q += bv[b] * s.at(wrap_index(fu + a, s.count_u), wrap_index(fw + b, s.count_v));
-          p += bu[a] * q;
-        }
+        p = point_at(s, bu.data(), fu, v[off[j] + k]);
       } else {
         for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[wrap_index(fu + a, s.count_u)];
       }

@@ -2,12 +2,30 @@
 // section 6: the gap the paper admits in its section 3.4).
 #pragma once
 
+#include <array>
 #include <span>
 
+#include "basis.h"
 #include "sfit/rows.h"
 #include "sfit/surface.h"
 
 namespace sfit {
+
+/// S at a point whose u basis is known (`bu` from eval_basis(), its first index `fu`) and
+/// whose v is its own (a per-point v, FitResult::v_points): the checks' arithmetic where no
+/// iso-curve of the row can be shared.
+inline Point point_at(const Surface& s, const double* bu, int fu, double v) {
+  std::array<double, kMaxDegree + 1> bv;
+  const int fw = eval_basis(s.degree_v, s.count_v, s.periodic_v, v, bv.data());
+  Point p = Point::Zero();
+  for (int a = 0; a <= s.degree_u; ++a) {
+    Point q = Point::Zero();
+    for (int b = 0; b <= s.degree_v; ++b)
+      q += bv[b] * s.at(wrap_index(fu + a, s.count_u), wrap_index(fw + b, s.count_v));
+    p += bu[a] * q;
+  }
+  return p;
+}
 
 struct DeviationCheck {
   Point max_deviation = Point::Zero();  ///< max over all points of |S(u,v) - D| per axis

@@ -62,14 +62,7 @@ PointsVerdict check_points(const Surface& s, const Rows& rows, std::span<const d
         const int fu = eval_basis(s.degree_u, s.count_u, s.periodic_u, uj[k], bu.data());
         Point p = Point::Zero();
         if (per_point) {
-          const int fw =
-              eval_basis(s.degree_v, s.count_v, s.periodic_v, v[rows.offsets()[j] + k], bv.data());
-          for (int a = 0; a <= s.degree_u; ++a) {
-            Point q = Point::Zero();
-            for (int c = 0; c <= s.degree_v; ++c)
-              q += bv[c] * s.at(wrap_index(fu + a, s.count_u), wrap_index(fw + c, s.count_v));
-            p += bu[a] * q;
-          }
+          p = point_at(s, bu.data(), fu, v[rows.offsets()[j] + k]);
         } else {
           for (int a = 0; a <= s.degree_u; ++a) p += bu[a] * iso[wrap_index(fu + a, s.count_u)];
         }
