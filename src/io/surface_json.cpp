@@ -21,13 +21,18 @@ json point(const Point& p) {
 }
 }  // namespace
 
-json surface_to_json(const Surface& s) {
+json surface_header_to_json(const Surface& s) {
   json j;
   j["type"] = "bspline_surface";
   j["degree"] = {s.degree_u, s.degree_v};
   j["periodic"] = {s.periodic_u, s.periodic_v};
   j["knots_u"] = s.full_knots_u();
   j["knots_v"] = s.full_knots_v();
+  return j;
+}
+
+json surface_to_json(const Surface& s) {
+  json j = surface_header_to_json(s);
   json cps = json::array();
   const int fu = s.full_count_u(), fv = s.full_count_v();
   for (int i = 0; i < fu; ++i) {

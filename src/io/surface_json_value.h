@@ -14,6 +14,8 @@ namespace sfit::io {
 /// The surface in the contract's form: full knot vectors, full control arrays (a periodic
 /// direction stores its wrap copies), `periodic` flags. Doubles round-trip exactly.
 nlohmann::json surface_to_json(const Surface& surface);
+/// surface_to_json() without the control points (for a caller that writes them its own way).
+nlohmann::json surface_header_to_json(const Surface& surface);
 
 /// The report keys of the contract plus sfit's extras (degree, closed, column_counts,
 /// raised/repaired counts, solves).

@@ -254,12 +254,7 @@ std::string base64(const unsigned char* data, std::size_t n) {
 // The surface contract with the control points packed (state_json()).
 json packed_surface_json(const Surface& s) {
   static_assert(std::endian::native == std::endian::little, "packed doubles are little-endian");
-  json j;
-  j["type"] = "bspline_surface";
-  j["degree"] = {s.degree_u, s.degree_v};
-  j["periodic"] = {s.periodic_u, s.periodic_v};
-  j["knots_u"] = s.full_knots_u();
-  j["knots_v"] = s.full_knots_v();
+  json j = io::surface_header_to_json(s);
   const int fu = s.full_count_u(), fv = s.full_count_v();
   std::vector<double> xyz;
   xyz.reserve(static_cast<std::size_t>(fu) * fv * 3);
