@@ -10,6 +10,7 @@ import { join } from "node:path";
 import { skipUnlessChromium, loadPuppeteer, startEditor, launch, openPage } from "./browser.mjs";
 import { client } from "./api.mjs";
 import { evaluate } from "../js/bspline.js";
+import { settledAt } from "./page_helpers.mjs";
 
 skipUnlessChromium();
 const SFIT = process.env.SFIT_CLI;
@@ -32,10 +33,7 @@ after(async () => {
   if (ed) await ed.stop();
 });
 
-const settled = (minVersion) => page.waitForFunction((v) => {
-  const h = window.sfitEditor;
-  return h.idle && h.state && h.state.version >= v && h.state.final && !h.state.dragging && h.state.rows;
-}, { timeout: 60000 }, minVersion);
+const settled = (minVersion) => settledAt(page, minVersion);
 
 function assertWithinT(st) {
   const t = st.report.tolerance, slack = st.report.roundoff;

@@ -7,6 +7,12 @@ import { client } from "./api.mjs";
 
 export const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
+/// Waits until `page` shows the server's full fit of version `minVersion` or later, idle.
+export const settledAt = (page, minVersion) => page.waitForFunction((v) => {
+  const h = window.sfitEditor;
+  return h.idle && h.state && h.state.version >= v && h.state.final && !h.state.dragging && h.state.rows;
+}, { timeout: 60000 }, minVersion);
+
 /// Starts `sfit edit` on a copy of `rows` (with `extra` arguments), Chromium and the page.
 /// Resolves with {ed, api, browser, page, errors, close()}; skips (exit 77) without Chromium.
 export async function openEditor(sfit, rows, extra = []) {
@@ -31,10 +37,7 @@ export async function openEditor(sfit, rows, extra = []) {
 /// before() has run); each takes another page (and client) where a test has two.
 export function pageHelpers(ctx) {
   const idle = (p = ctx().page) => p.waitForFunction(() => window.sfitEditor.idle, { timeout: 60000 });
-  const settled = (minVersion, p = ctx().page) => p.waitForFunction((v) => {
-    const h = window.sfitEditor;
-    return h.idle && h.state && h.state.version >= v && h.state.final && !h.state.dragging && h.state.rows;
-  }, { timeout: 60000 }, minVersion);
+  const settled = (minVersion, p = ctx().page) => settledAt(p, minVersion);
   const version = (p = ctx().page) => p.evaluate(() => window.sfitEditor.state.version);
 
   /// The page and the server agree: the rows shown are the server's, the version, the counts

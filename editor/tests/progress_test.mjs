@@ -10,6 +10,7 @@ import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { skipUnlessChromium, loadPuppeteer, startEditor, launch, openPage } from "./browser.mjs";
 import { client } from "./api.mjs";
+import { sleep } from "./page_helpers.mjs";
 
 skipUnlessChromium();
 const SFIT = process.env.SFIT_CLI;
@@ -42,7 +43,6 @@ after(async () => {
   if (ed) await ed.stop();
   rmSync(dir, { recursive: true, force: true });
 });
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
 test("a drag during the full search at rest drops it; its progress was shown; no stale surface", async () => {
   const st0 = (await api.get("/api/state")).json;

@@ -9,6 +9,7 @@ import { join, dirname } from "node:path";
 import { fileURLToPath } from "node:url";
 import { skipUnlessChromium, loadPuppeteer, startEditor, launch, openPage } from "./browser.mjs";
 import { client } from "./api.mjs";
+import { sleep, settledAt } from "./page_helpers.mjs";
 
 skipUnlessChromium();
 const SFIT = process.env.SFIT_CLI;
@@ -23,11 +24,7 @@ let browser;
 before(async () => { browser = await launch(puppeteer); });
 after(async () => { if (browser) await browser.close(); });
 
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-const settled = (page, minVersion) => page.waitForFunction((v) => {
-  const h = window.sfitEditor;
-  return h.idle && h.state && h.state.version >= v && h.state.final && !h.state.dragging && h.state.rows;
-}, { timeout: 60000 }, minVersion);
+const settled = settledAt;
 const version = (page) => page.evaluate(() => window.sfitEditor.state.version);
 async function typeInto(page, id, text) {
   await page.click(`#${id}`, { clickCount: 3 });
