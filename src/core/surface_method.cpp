@@ -7,6 +7,7 @@
 #include <array>
 #include <atomic>
 #include <climits>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -126,6 +127,14 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   std::size_t rules_done = 0;
   std::vector<Parametrization> searched;
   std::optional<GeometricFit> geo;  // the kGeometric rule's surface (geometric_search.h)
+  // Each rule's floor, made once (the geometric rule reads the chord rule's).
+  std::map<Parametrization, CountFloor> floors;
+  auto floor_of = [&](Parametrization r) -> const CountFloor& {
+    auto it = floors.find(r);
+    if (it == floors.end())
+      it = floors.emplace(r, count_floor(fr.centred, os, r, fr.roundoff)).first;
+    return it->second;
+  };
   for (Parametrization rule : rules) {
     if (rules_done > 0) progress_advance(rules_done);
     ++rules_done;
@@ -144,7 +153,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
       // The rows' floor at chord-length positions (count_floor.h; a heuristic here too: a
       // surface of these parameters is no iso-curve along a row): where it cannot beat the
       // bound, or noise forces interpolation, the rule is not searched.
-      const CountFloor cf = count_floor(fr.centred, os, Parametrization::kChord, fr.roundoff);
+      const CountFloor& cf = floor_of(Parametrization::kChord);
       if (cf.forced || static_cast<long>(cf.nu) * cf.nv >= bound) {
         ++floored;
         forced_rules += cf.forced ? 1 : 0;
@@ -166,7 +175,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
       if (geo && step > 1) bound = std::min(bound, 2 * n);
       continue;
     }
-    const CountFloor floor = count_floor(fr.centred, os, rule, fr.roundoff);
+    const CountFloor& floor = floor_of(rule);
     if (static_cast<long>(floor.nu) * floor.nv >= bound ||
         (step > 1 && static_cast<std::size_t>(floor.nu) > longest / step + 2 + 16)) {
       ++floored;
