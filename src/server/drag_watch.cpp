@@ -34,7 +34,7 @@ void DragWatch::run() {
     std::lock_guard<std::mutex> lock(mutex_);
     // A request held the session meanwhile: the client is there (its answer is touched next).
     if (Clock::now() - asked > tick) continue;
-    if (!session_.dragging()) continue;
+    if (!session_.dragging() || serving_.load() > 0) continue;
     const auto idle = Clock::now() - Clock::time_point(Clock::duration(last_.load()));
     if (idle < timeout_ || (session_.final() && idle < 20 * timeout_)) continue;
     try {

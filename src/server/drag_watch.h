@@ -25,6 +25,21 @@ class DragWatch {
 
   /// An edit was answered: the dragging client is there.
   void touch();
+  /// While one lives, an edit is being served (a rest's full search may take longer than the
+  /// timeout): the client is there, and no drag is ended. Its end touches.
+  class Serving {
+   public:
+    explicit Serving(DragWatch& w) : w_(w) { ++w_.serving_; }
+    ~Serving() {
+      w_.touch();
+      --w_.serving_;
+    }
+    Serving(const Serving&) = delete;
+    Serving& operator=(const Serving&) = delete;
+
+   private:
+    DragWatch& w_;
+  };
   /// Drags the watch has ended.
   long ended() const { return ended_.load(); }
 
@@ -35,6 +50,7 @@ class DragWatch {
   const std::chrono::milliseconds timeout_;
   std::atomic<std::chrono::steady_clock::rep> last_;
   std::atomic<long> ended_{0};
+  std::atomic<int> serving_{0};
   std::mutex wait_mutex_;
   std::condition_variable wake_;
   bool stop_ = false;

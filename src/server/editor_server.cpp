@@ -22,6 +22,7 @@ void EditorServer::Impl::session_routes() {
     });
   });
   http.Post("/api/edit", [this](const httplib::Request& req, httplib::Response& res) {
+    const DragWatch::Serving serving(watch);  // the client is there while its edit is served
     json body;
     std::string key;
     std::optional<std::uint64_t> ticket;  // a drag step with a seq: its arrival
