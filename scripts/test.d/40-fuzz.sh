@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # CI stage: build the libFuzzer targets (preset 'fuzz': clang, ASan + UBSan) and run each for
 # FUZZ_SECONDS (default 40) on corpora seeded from examples/, tests/bad_input/ and STEP/IGES
-# section files written by make_section_seeds. Prints one summary line per target; fails if
+# section files written by make_section_seeds. The surface seeds are fitted by the main build's
+# CLI (BUILD_DIR, default build; scripts/test.sh builds it first), so this stage compiles only
+# the fuzz targets with clang. Prints one summary line per target; fails if
 # any target finds a crash, a hang (a unit over 10 s), a leak or a sanitizer report.
 # Crashing inputs are kept in
 # build-fuzz/artifacts/. Environment: FUZZ_SECONDS, FUZZ_WORK (default build-fuzz/run).
@@ -16,7 +18,7 @@ command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake --preset fuzz "${launcher[@]}" >/dev/null
 cmake --build --preset fuzz -j "$(nproc)"
 bin=build-fuzz/fuzz
-cli=build-fuzz/apps/sfit/sfit
+cli="${BUILD_DIR:-build}/apps/sfit/sfit"
 
 # --- seed corpora ---------------------------------------------------------------------------
 rm -rf "$work"
