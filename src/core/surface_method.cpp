@@ -114,7 +114,17 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   const std::size_t points = fr.centred.total_points();
   const std::size_t step =
       points > kSearchPoints ? (points + kSearchPoints - 1) / kSearchPoints : 1;
-  const std::vector<Parametrization> rules = rules_of(o.parametrization);
+  std::vector<Parametrization> rules = rules_of(o.parametrization);
+  // On a large grid (every row as long) the row rules are cheap (one Gram matrix for all rows,
+  // a separable solve) and the geometric rule's scattered solves over all points cost most
+  // (on a smooth 10^6-point grid 1.4 of 2.7 s CPU, for a surface no smaller): it goes last,
+  // bounded by their best. On ragged rows it stays first, where it bounds their costlier
+  // searches.
+  bool grid = true;
+  for (std::size_t j = 1; j < rows.size() && grid; ++j) grid = rows[j].size() == rows[0].size();
+  if (step > 1 && grid)
+    std::stable_partition(rules.begin(), rules.end(),
+                          [](Parametrization r) { return r != Parametrization::kGeometric; });
   // Rows (and a grid's columns) fitted as curves at T bound each rule's counts from below
   // (count_floor.h): a rule whose bound cannot beat the best, or that the sample's
   // rows are too short to reach, is not searched; where noise forces every rule to
