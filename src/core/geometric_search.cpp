@@ -22,7 +22,7 @@ constexpr std::size_t kSamplePoints = 20000;
 // Gauss-Newton steps per point and round.
 constexpr int kNewtonSteps = 3;
 // Pairs with more unknowns than this, or whose factorisation costs more flops, are not tried.
-constexpr long kMaxUnknowns = 20000;
+constexpr long kMaxUnknowns = kGeometricMaxUnknowns;
 constexpr double kMaxCost = 4e7;
 // Where a pair misses T by at most this factor, the smoothness weight is lowered (by
 // kSmoothingLower) and the pair refitted once: the term may be what misses. The lower weight

@@ -27,6 +27,10 @@ struct GeometricFit {
   double smoothing = 0;      ///< the smoothness weight the surface was made with
 };
 
+/// The most unknowns (nu x nv) a pair of the search may have: larger pairs are not tried (their
+/// factorisation costs too much), so a rule whose floor is above it cannot find one.
+inline constexpr long kGeometricMaxUnknowns = 20000;
+
 /// Coarse to fine: on large data the pairs are searched on every step-th point of each row
 /// (search_pairs(), below `bound` and below the points' number), the parameters corrected there
 /// (project_parameters(), refit, descend: rounds while the count falls), then the pair is

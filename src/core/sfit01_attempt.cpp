@@ -30,7 +30,7 @@ void SurfaceFitter::copy_centred(const Rows& rows) {
   });
 }
 
-SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
+SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound, const Point& column_bound,
                                                const std::vector<char>* changed) {
   Attempt at;
   const Rows& rows = centred_;
@@ -99,7 +99,8 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
 
   // Transverse stage: column i holds control point i of every row curve (docs/method.md 5).
   // The fold guard may set its own rule across the rows (across_).
-  Columns columns = fit_columns(rows, rs.curves, nu, across_.value_or(rule_), o_, bound, threads_);
+  Columns columns =
+      fit_columns(rows, rs.curves, nu, across_.value_or(rule_), o_, column_bound, threads_);
   const std::vector<CurveFit>& column_fits = columns.fits;
   const Represented& cs = columns.represented;
   const int nv = cs.common;

@@ -43,6 +43,12 @@ class SurfaceFitter {
   }
   /// Rows refitted by the last fit() or update().
   std::size_t rows_refitted() const { return rows_refitted_; }
+  /// The stage budgets. false (the paper's): T/2 for the rows and T/2 for the columns. true:
+  /// all of T for the rows, and the columns interpolate the rows' control points (the
+  /// transverse stage at the round-off allowance, nv = the number of rows). Where the data
+  /// jumps from row to row (roofs and trees in airborne LiDAR) the columns interpolate anyway,
+  /// and half of T spent on them is lost to the rows.
+  void rows_take_all(bool on) { rows_take_all_ = on; }
 
  private:
   struct Attempt;
@@ -54,7 +60,8 @@ class SurfaceFitter {
   FitResult fit_rule_unguarded(const Rows& rows, Parametrization requested);  // no fold guard
   bool folds(const FitResult& r) const;
   FitResult fit_with_rule(const Rows& rows);
-  Attempt fit_once(const Point& bound, const std::vector<char>* changed);
+  // `bound`: the row stage's budget; `column_bound`: the transverse stage's.
+  Attempt fit_once(const Point& bound, const Point& column_bound, const std::vector<char>* changed);
   FitResult finish(Attempt& at, int tightenings, const struct DeviationCheck& check,
                    double seconds_start) const;
   void centre(const Rows& rows);
@@ -70,6 +77,8 @@ class SurfaceFitter {
   // State of the first (untightened) attempt of the last fit, reused by update().
   bool valid_ = false;
   Point bound_ = Point::Zero();
+  Point column_bound_ = Point::Zero();
+  bool rows_take_all_ = false;            // rows_take_all()
   std::vector<CurveFit> row_fits_;        // the count searches' results (hints chain from them)
   std::vector<CurveFit> row_final_fits_;  // after exact_maximum(): what was re-represented
   std::vector<Rerepresentation> row_curves_;
