@@ -106,33 +106,52 @@ class DaskFit:
 
 class _Runner:
     """Computes collections on the default Dask scheduler (a distributed Client where one is
-    active), with distributed.progress() when asked."""
+    active), with distributed.progress() when asked; logs each pass (what, rows step,
+    seconds of wall) for the report."""
 
     def __init__(self, progress):
         self.progress = progress
+        self.log = []
         try:
             from distributed import default_client
             self.client = default_client()
         except (ImportError, ValueError):
             self.client = None
 
-    def persist(self, *collections):
+    def persist(self, what, step, *collections):
+        """Persists on the workers and waits (so the pass is timed as itself)."""
         import dask
 
+        t = time.perf_counter()
         if self.client is None:
-            return dask.persist(*collections)
-        return self.client.persist(list(collections))
+            out = dask.persist(*collections)
+        else:
+            from distributed import futures_of, wait
 
-    def __call__(self, *collections):
+            out = self.client.persist(list(collections))
+            if self.progress:
+                from distributed import progress
+                progress(out)
+            wait(futures_of(out))
+        self.log.append({"pass": what, "rows_step": step,
+                         "seconds": round(time.perf_counter() - t, 3)})
+        return out
+
+    def __call__(self, what, step, *collections):
         import dask
 
+        t = time.perf_counter()
         if self.client is None:
-            return dask.compute(*collections)
-        futures = self.client.compute(list(collections))
-        if self.progress:
-            from distributed import progress
-            progress(futures)
-        return self.client.gather(futures)
+            out = dask.compute(*collections)
+        else:
+            futures = self.client.compute(list(collections))
+            if self.progress:
+                from distributed import progress
+                progress(futures)
+            out = self.client.gather(futures)
+        self.log.append({"pass": what, "rows_step": step,
+                         "seconds": round(time.perf_counter() - t, 3)})
+        return out
 
 
 def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, closed="",
@@ -177,7 +196,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
 
     # Pass 1: the box and each row's points (a row may span chunks).
     blocks = list(X.to_delayed().ravel())
-    stats = run(*[dask.delayed(_block_stats, pure=True)(b) for b in blocks])
+    stats = run("statistics", 1,
+                *[dask.delayed(_block_stats, pure=True)(b) for b in blocks])
     sizes_of_chunks = np.array(X.chunks[0], dtype=np.int64)
     g0 = np.concatenate([[0], np.cumsum(sizes_of_chunks)])[:-1]
     used = [i for i, s in enumerate(stats) if s is not None]
@@ -240,23 +260,24 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         parts = [da.from_delayed(dask.delayed(_partial, pure=True)(c, centre, nu, nv, spec),
                                  shape=(nbytes // 8,), dtype=float) for c in chunks_at[step]]
         total = da.stack(parts).sum(axis=0, split_every=split_every)
-        (flat,) = run(total)
+        (flat,) = run(f"normal equations {nu} x {nv}", step, total)
         kept = row_sizes[(np.arange(M) % step == 0) | (np.arange(M) == M - 1)]
         ok, control, guard = _sfit._solve_normal_equations(
             flat, nu, nv, du, dv, cu, cv, int(kept.min()), box_min, box_max)
         return control if ok else None, guard
 
-    def check(control, step):
+    def check(control, nu, nv, step):
         """The largest deviation per axis, mapped over the chunks, max-reduced."""
         c = dask.delayed(control, pure=True)
         parts = [da.from_delayed(dask.delayed(_deviation, pure=True)(w, centre, c, spec),
                                  shape=(3,), dtype=float) for w in chunks_at[step]]
-        (dev,) = run(da.stack(parts).max(axis=0, split_every=split_every))
+        (dev,) = run(f"check {nu} x {nv}", step,
+                     da.stack(parts).max(axis=0, split_every=split_every))
         return dev
 
     def attempt(nu, nv, step):
         control, guard = solve(nu, nv, step)
-        dev = check(control, step) if control is not None else None
+        dev = check(control, nu, nv, step) if control is not None else None
         # The round-off allowance only on an axis whose T is 0, as in the library.
         holds = dev is not None and guard is None and bool(
             np.all(dev <= T + np.where(T == 0, roundoff, 0.0)))
@@ -303,6 +324,7 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     chunks_at = {1: [dask.delayed(_rows_sample, pure=True)(b, info, 1) for b, info in work]}
     if step > 1:
         chunks_at[step] = list(run.persist(
+            f"sample of every {step}th row", 1,
             *[dask.delayed(_rows_sample, pure=True)(b, info, step) for b, info in work]))
     stop = "minimal"
     if counts is not None:
@@ -348,7 +370,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         "control_points": [nu, nv], "degree": [du, dv], "closed": [cu, cv],
         "parametrization": parameters, "method": "dask least squares",
         "pairs_tried": len(pairs), "chunks": len(work), "stop_reason": stop,
-        "rows_step": step, "full_passes": 1 + 2 * sum(p["rows_step"] == 1 for p in pairs),
+        "rows_step": step, "full_passes": sum(p["rows_step"] == 1 for p in run.log),
+        "passes": run.log,
         "partial_bytes": partial_bytes(nu, nv, du, dv),
         "roundoff": roundoff, "seconds": time.perf_counter() - t0,
     }
