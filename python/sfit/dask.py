@@ -36,6 +36,8 @@ __all__ = ["DaskFit", "LAS_CHUNK_POINTS", "fit", "in_memory_fit", "points_from_f
 
 # No task result over this many bytes (one chunk's normal equations grow with nu nv).
 MAX_RESULT_BYTES = 256 << 20
+# Control points up to this size travel inside each check task (fused with the chunk's read).
+INLINE_CONTROL_BYTES = 1 << 20
 # Above this many points the count search runs on a sample of the rows (fit(sample_points=)).
 SAMPLE_POINTS = 2_000_000
 
@@ -267,8 +269,13 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         return control if ok else None, guard
 
     def check(control, nu, nv, step):
-        """The largest deviation per axis, mapped over the chunks, max-reduced."""
-        c = dask.delayed(control, pure=True)
+        """The largest deviation per axis, mapped over the chunks, max-reduced. Small control
+        points go into each task (so Dask fuses the check into the task that reads or makes
+        the chunk, as it does the normal equations: a task with a second input, shared,
+        would not fuse, and the chunk could travel to another worker), larger ones once as a
+        shared input."""
+        c = control if control.nbytes <= INLINE_CONTROL_BYTES else \
+            dask.delayed(control, pure=True)
         parts = [da.from_delayed(dask.delayed(_deviation, pure=True)(w, centre, c, spec),
                                  shape=(3,), dtype=float) for w in chunks_at[step]]
         (dev,) = run(f"check {nu} x {nv}", step,
