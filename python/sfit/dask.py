@@ -74,6 +74,46 @@ def _rows_sample(block, info, step):
     return _Chunk(block[keep], (g0, r0, starts, sizes, M))
 
 
+class _First:
+    """Pass 1 of a chunk: its statistics and, for the search's sample, the points of every
+    step-th row and of its last row (the last row of the data is the last of each chunk
+    holding it), with each point's position in the chunk (column 4)."""
+
+    __slots__ = ("stats", "sample")
+
+    def __init__(self, stats, sample):
+        self.stats, self.sample = stats, sample
+
+
+def _first_pass(block, step):
+    stats = _block_stats(block)
+    if stats is None or "error" in stats:
+        return _First(stats, None)
+    r = block[:, 3]
+    keep = np.flatnonzero((r.astype(np.int64) % step == 0) | (r == r[-1]))
+    return _First(stats, np.column_stack([block[keep], keep.astype(float)]))
+
+
+def _stats_of(first):
+    return first.stats
+
+
+def _sample_of(first, info, step):
+    """The sample of a chunk from its pass-1 points (every step-th row and the data's last
+    row), with the row starts moved so each kept point keeps its index in its row."""
+    g0, r0, starts, sizes, M = info
+    a = first.sample
+    r = a[:, 3].astype(np.int64)
+    keep = (r % step == 0) | (r == M - 1)
+    a = a[keep]
+    r = r[keep]
+    first_of_row = np.flatnonzero(np.diff(r, prepend=-1))
+    starts = starts.copy()
+    # g0 + (position in the sample) - start' = g0 + (position in the chunk) - start.
+    starts[r[first_of_row] - r0] -= a[first_of_row, 4].astype(np.int64) - first_of_row
+    return _Chunk(np.ascontiguousarray(a[:, :4]), (g0, r0, starts, sizes, M))
+
+
 def _partial(chunk, centre, nu, nv, spec):
     block, info = chunk.block, chunk.info
     return _sfit._partial_normal_equations(block, info[0], info[1], info[2], info[3], info[4],
@@ -151,8 +191,9 @@ class _Runner:
                 from distributed import progress
                 progress(futures)
             out = self.client.gather(futures)
-        self.log.append({"pass": what, "rows_step": step,
-                         "seconds": round(time.perf_counter() - t, 3)})
+        if what is not None:  # None: no pass over the points (results already on the workers)
+            self.log.append({"pass": what, "rows_step": step,
+                             "seconds": round(time.perf_counter() - t, 3)})
         return out
 
 
@@ -196,10 +237,21 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     run = _Runner(progress)
     X = _as_points(points, rows)
 
-    # Pass 1: the box and each row's points (a row may span chunks).
+    # Pass 1: the box and each row's points (a row may span chunks); above sample_points, in
+    # the same pass, each chunk's points of every step-th row kept on its worker for the search.
     blocks = list(X.to_delayed().ravel())
-    stats = run("statistics", 1,
-                *[dask.delayed(_block_stats, pure=True)(b) for b in blocks])
+    step_n = 1
+    if counts is None and X.shape[0] > sample_points:
+        step_n = -(-X.shape[0] // sample_points)
+    firsts = None
+    if step_n == 1:
+        stats = run("statistics", 1,
+                    *[dask.delayed(_block_stats, pure=True)(b) for b in blocks])
+    else:
+        firsts = run.persist(f"statistics, sample of every {step_n}th row", 1,
+                             *[dask.delayed(_first_pass, pure=True)(b, step_n)
+                               for b in blocks])
+        stats = run(None, 0, *[dask.delayed(_stats_of, pure=True)(f) for f in firsts])
     sizes_of_chunks = np.array(X.chunks[0], dtype=np.int64)
     g0 = np.concatenate([[0], np.cumsum(sizes_of_chunks)])[:-1]
     used = [i for i, s in enumerate(stats) if s is not None]
@@ -246,6 +298,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         r0, r1 = int(stats[i]["rows"][0]), int(stats[i]["rows"][-1]) + 1
         infos.append((int(g0[i]), r0, row_starts[r0:r1], row_sizes[r0:r1], M))
     work = [(b, info) for b, info in zip(blocks, infos) if info is not None]
+    if firsts is not None:
+        firsts = [f for f, info in zip(firsts, infos) if info is not None]
     spec = (du, dv, cu, cv, parameters)
     pairs = []
     max_u = max(du + 1, int(row_sizes.max()))
@@ -329,10 +383,16 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     # Each chunk as (points, rows); the sample's filtered once by its worker and kept there
     # (persisted: a probe on it reads 1/step of the points, not the chunk again).
     chunks_at = {1: [dask.delayed(_rows_sample, pure=True)(b, info, 1) for b, info in work]}
-    if step > 1:
+    if step > 1 and step == step_n:  # made in pass 1
+        chunks_at[step] = list(run.persist(
+            f"sample of every {step}th row", step,
+            *[dask.delayed(_sample_of, pure=True)(f, info, step)
+              for f, (b, info) in zip(firsts, work)]))
+    elif step > 1:  # fewer rows than pass 1 assumed: a pass of its own
         chunks_at[step] = list(run.persist(
             f"sample of every {step}th row", 1,
             *[dask.delayed(_rows_sample, pure=True)(b, info, step) for b, info in work]))
+    firsts = None  # pass 1's points released where the sample was made (or not needed)
     stop = "minimal"
     if counts is not None:
         nu, nv = (int(c) for c in counts)
