@@ -85,6 +85,12 @@ def worker_peak_mb():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
+def cpu_seconds():
+    """This process's CPU time (user + system), s: steadier than wall on a shared machine."""
+    r = resource.getrusage(resource.RUSAGE_SELF)
+    return r.ru_utime + r.ru_stime
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--points", type=float, default=1e8)
@@ -124,9 +130,14 @@ def main(argv=None):
            "memory_limit_per_worker": a.memory_limit, "load_before": os.getloadavg()}
     try:
         x, sizes = scan(n, chunk)
+        cpu0 = client.run(cpu_seconds)
+        client_cpu0 = cpu_seconds()
         t = time.perf_counter()
         f = sfit.dask.fit(x, tol_rel=a.tol_rel)
         out["dask_seconds"] = time.perf_counter() - t
+        out["client_cpu_seconds"] = cpu_seconds() - client_cpu0
+        cpu1 = client.run(cpu_seconds)
+        out["worker_cpu_seconds"] = sorted(cpu1[w] - cpu0[w] for w in cpu1)
         r = f.report
         out.update(rows=len(sizes), chunks=r["chunks"], counts=r["control_points"],
                    rounds=r["pairs_tried"], rows_step=r["rows_step"],
@@ -151,8 +162,10 @@ def main(argv=None):
         del pts
         out["reference_generate_seconds"] = time.perf_counter() - t
         t = time.perf_counter()
+        cpu = cpu_seconds()
         mem = sfit.dask.in_memory_fit(rows, r["control_points"], tol=r["tolerance"])
         out["in_memory_seconds"] = time.perf_counter() - t
+        out["in_memory_cpu_seconds"] = cpu_seconds() - cpu
         out["client_peak_mb_after_in_memory"] = peak_mb()
         t = time.perf_counter()
         same = sfit.dask.fit(xr, tol=r["tolerance"], counts=r["control_points"])
