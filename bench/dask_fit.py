@@ -99,6 +99,9 @@ def main(argv=None):
     p.add_argument("--tol-rel", type=float, default=1e-3)
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--memory-limit", default="2GB", help="per worker")
+    p.add_argument("--threads", action="store_true",
+                   help="one worker process with --workers threads instead of --workers "
+                   "processes of one thread (sfit's chunk work runs without the GIL)")
     p.add_argument("--scheduler", help="address of a running scheduler instead of a LocalCluster")
     p.add_argument("--dask-malloc-trim", action="store_true",
                    help="keep Dask's MALLOC_TRIM_THRESHOLD_=65536 in the workers (it turns off "
@@ -123,10 +126,12 @@ def main(argv=None):
         if not a.dask_malloc_trim:
             env.pop("MALLOC_TRIM_THRESHOLD_", None)
         dask.config.set({"distributed.nanny.pre-spawn-environ": env})
-        cluster = LocalCluster(n_workers=a.workers, threads_per_worker=1, processes=True,
+        cluster = LocalCluster(n_workers=1 if a.threads else a.workers,
+                               threads_per_worker=a.workers if a.threads else 1, processes=True,
                                memory_limit=a.memory_limit, dashboard_address=":0")
         client = Client(cluster)
     out = {"points": n, "reference": ref, "chunk_points": chunk, "workers": a.workers,
+           "threads_in_one_worker": a.threads,
            "memory_limit_per_worker": a.memory_limit, "load_before": os.getloadavg()}
     try:
         x, sizes = scan(n, chunk)
