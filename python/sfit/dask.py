@@ -210,10 +210,10 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     parameters: "uniform" (default) or "paper". counts: (nu, nv) to fit at, no search.
     split_every: the tree reduction's fan-in. progress: distributed.progress() per pass.
     sample_points: above this many points the counts are searched on every k-th row (about
-    this many points; each chunk filtered once by its worker and kept there), then verified on
-    every point and raised until they hold there (coarse to fine: two passes over all the
-    points where the sample's pair holds).
-    Returns a DaskFit equal to in_memory_fit() of the same points at the same counts. Raises
+    this many points; kept by each chunk's worker from the statistics' pass), then verified
+    on every point and raised until they hold there (coarse to fine: three passes over all
+    the points in all where the sample's pair holds).
+    Returns a DaskFit (its report's "passes": every pass with its row step and seconds) equal to in_memory_fit() of the same points at the same counts. Raises
     sfit.Error ("usage", "input-data", "tolerance-not-met" when no pair holds T).
     """
     import dask
