@@ -15,6 +15,11 @@ of those --reference points at the same counts, which must equal it to 1e-10 rel
 
 Memory per worker: the peak resident set of each worker process (getrusage, run on the
 workers); the client's: the peak of this process (VmHWM) before and after the in-memory fit.
+Time: wall and CPU (each worker's, the client's with the scheduler it runs), every pass of the
+fit (report["passes"]: what, row step, seconds), the median full pass; the load average
+before and after, since the machine may be shared. The LocalCluster's workers start without
+Dask's MALLOC_TRIM_THRESHOLD_ (--dask-malloc-trim keeps it; docs/python.md says why).
+10^8 points took 73.5 s at a load of 4 on 2 cores (docs/python.md, "More than one machine").
 """
 
 import argparse
