@@ -135,7 +135,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     on every point and raised until they hold there (coarse to fine: three passes over all
     the points in all where the sample's pair holds).
     Returns a DaskFit (its report's "passes": every pass with its row step and seconds) equal
-    to in_memory_fit() of the same points at the same counts. Raises sfit.Error ("usage", "input-data", "tolerance-not-met" when no pair holds T).
+    to in_memory_fit() of the same points at the same counts. Raises sfit.Error ("usage",
+    "input-data", "tolerance-not-met" when no pair holds T).
     """
     import dask
     import dask.array as da
