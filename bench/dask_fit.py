@@ -19,7 +19,8 @@ Time: wall and CPU (each worker's, the client's with the scheduler it runs), eve
 fit (report["passes"]: what, row step, seconds), the median full pass; the load average
 before and after, since the machine may be shared. The LocalCluster's workers start without
 Dask's MALLOC_TRIM_THRESHOLD_ (--dask-malloc-trim keeps it; docs/python.md says why).
-10^8 points took 73.5 s at a load of 4 on 2 cores (docs/python.md, "More than one machine").
+10^8 points took 73.5 s at a load of 4 on 2 cores, 82-123 s of worker CPU (docs/python.md,
+"More than one machine").
 """
 
 import argparse
