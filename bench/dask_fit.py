@@ -15,10 +15,17 @@ of those --reference points at the same counts, which must equal it to 1e-10 rel
 
 Memory per worker: the peak resident set of each worker process (getrusage, run on the
 workers); the client's: the peak of this process (VmHWM) before and after the in-memory fit.
+Time: wall and CPU (each worker's, the client's with the scheduler it runs), every pass of the
+fit (report["passes"]: what, row step, seconds), the median full pass; the load average
+before and after, since the machine may be shared. The LocalCluster's workers start without
+Dask's MALLOC_TRIM_THRESHOLD_ (--dask-malloc-trim keeps it; docs/python.md says why).
+10^8 points took 73.5 s at a load of 4 on 2 cores, 82-123 s of worker CPU (docs/python.md,
+"More than one machine").
 """
 
 import argparse
 import json
+import os
 import math
 import resource
 import time
@@ -84,6 +91,12 @@ def worker_peak_mb():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
+def cpu_seconds():
+    """This process's CPU time (user + system), s: steadier than wall on a shared machine."""
+    r = resource.getrusage(resource.RUSAGE_SELF)
+    return r.ru_utime + r.ru_stime
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--points", type=float, default=1e8)
@@ -92,7 +105,14 @@ def main(argv=None):
     p.add_argument("--tol-rel", type=float, default=1e-3)
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--memory-limit", default="2GB", help="per worker")
+    p.add_argument("--threads", action="store_true",
+                   help="one worker process with --workers threads instead of --workers "
+                   "processes of one thread (sfit's chunk work runs without the GIL)")
     p.add_argument("--scheduler", help="address of a running scheduler instead of a LocalCluster")
+    p.add_argument("--dask-malloc-trim", action="store_true",
+                   help="keep Dask's MALLOC_TRIM_THRESHOLD_=65536 in the workers (it turns off "
+                   "glibc's adaptive mmap threshold: every large numpy temporary is mapped and "
+                   "zeroed afresh, the generator 2.5 times slower)")
     p.add_argument("--json", help="write the numbers here too")
     a = p.parse_args(argv)
 
@@ -106,22 +126,41 @@ def main(argv=None):
     if a.scheduler:
         client = Client(a.scheduler)
     else:
-        cluster = LocalCluster(n_workers=a.workers, threads_per_worker=1, processes=True,
+        import dask
+
+        env = dict(dask.config.get("distributed.nanny.pre-spawn-environ"))
+        if not a.dask_malloc_trim:
+            env.pop("MALLOC_TRIM_THRESHOLD_", None)
+        dask.config.set({"distributed.nanny.pre-spawn-environ": env})
+        cluster = LocalCluster(n_workers=1 if a.threads else a.workers,
+                               threads_per_worker=a.workers if a.threads else 1, processes=True,
                                memory_limit=a.memory_limit, dashboard_address=":0")
         client = Client(cluster)
-    out = {"points": n, "reference": ref, "chunk_points": chunk, "workers": a.workers}
+    out = {"points": n, "reference": ref, "chunk_points": chunk, "workers": a.workers,
+           "threads_in_one_worker": a.threads,
+           "memory_limit_per_worker": a.memory_limit, "load_before": os.getloadavg()}
     try:
         x, sizes = scan(n, chunk)
+        cpu0 = client.run(cpu_seconds)
+        client_cpu0 = cpu_seconds()
         t = time.perf_counter()
         f = sfit.dask.fit(x, tol_rel=a.tol_rel)
         out["dask_seconds"] = time.perf_counter() - t
+        out["client_cpu_seconds"] = cpu_seconds() - client_cpu0
+        cpu1 = client.run(cpu_seconds)
+        out["worker_cpu_seconds"] = sorted(cpu1[w] - cpu0[w] for w in cpu1)
         r = f.report
         out.update(rows=len(sizes), chunks=r["chunks"], counts=r["control_points"],
                    rounds=r["pairs_tried"], rows_step=r["rows_step"],
                    full_passes=r["full_passes"], stop_reason=r["stop_reason"],
                    within_tolerance=r["within_tolerance"],
                    max_deviation=r["max_deviation"], tolerance=r["tolerance"],
-                   partial_bytes=r["partial_bytes"])
+                   partial_bytes=r["partial_bytes"], passes=r["passes"])
+        full = [q["seconds"] for q in r["passes"] if q["rows_step"] == 1]
+        out["seconds_per_full_pass"] = {"median": float(np.median(full)), "max": max(full)}
+        out["seconds_on_the_sample"] = sum(q["seconds"] for q in r["passes"]
+                                           if q["rows_step"] > 1)
+        out["load_after_dask"] = os.getloadavg()
         out["worker_peak_mb"] = sorted(client.run(worker_peak_mb).values())
         out["client_peak_mb_after_dask"] = peak_mb()
 
@@ -134,8 +173,10 @@ def main(argv=None):
         del pts
         out["reference_generate_seconds"] = time.perf_counter() - t
         t = time.perf_counter()
+        cpu = cpu_seconds()
         mem = sfit.dask.in_memory_fit(rows, r["control_points"], tol=r["tolerance"])
         out["in_memory_seconds"] = time.perf_counter() - t
+        out["in_memory_cpu_seconds"] = cpu_seconds() - cpu
         out["client_peak_mb_after_in_memory"] = peak_mb()
         t = time.perf_counter()
         same = sfit.dask.fit(xr, tol=r["tolerance"], counts=r["control_points"])
@@ -144,7 +185,8 @@ def main(argv=None):
             np.max(np.abs(same.surface.control_points - mem.surface.control_points)) /
             np.max(np.abs(mem.surface.control_points)))
         out["seconds_per_1e6_points_per_full_pass"] = \
-            out["dask_seconds"] / r["full_passes"] / (n / 1e6)
+            out["seconds_per_full_pass"]["median"] / (n / 1e6)
+        out["load_after"] = os.getloadavg()
     finally:
         client.close()
         if cluster is not None:

@@ -30,12 +30,16 @@ import numpy as np
 from . import _sfit
 from ._dask_input import (LAS_CHUNK_POINTS, _as_points, _block_stats, _error,
                           points_from_files)
+from ._dask_tasks import (_deviation, _first_pass, _partial, _rows_sample, _sample_of,
+                          _stats_of)
 
 __all__ = ["DaskFit", "LAS_CHUNK_POINTS", "fit", "in_memory_fit", "points_from_files",
            "partial_bytes"]
 
 # No task result over this many bytes (one chunk's normal equations grow with nu nv).
 MAX_RESULT_BYTES = 256 << 20
+# Control points up to this size travel inside each check task (fused with the chunk's read).
+INLINE_CONTROL_BYTES = 1 << 20
 # Above this many points the count search runs on a sample of the rows (fit(sample_points=)).
 SAMPLE_POINTS = 2_000_000
 
@@ -43,47 +47,6 @@ SAMPLE_POINTS = 2_000_000
 def partial_bytes(nu, nv, degree_u=3, degree_v=3):
     """Bytes of one chunk's normal equations at (nu, nv): what each task sends back."""
     return 8 * _sfit._partial_size(nu, nv, degree_u, degree_v)
-
-
-# ---------------------------------------------------------------------------- the tasks
-
-class _Chunk:
-    """A chunk's points with their rows' statistics, as one task result (a tuple would be
-    taken for a task by Dask's graph optimisation)."""
-
-    __slots__ = ("block", "info")
-
-    def __init__(self, block, info):
-        self.block, self.info = block, info
-
-
-def _rows_sample(block, info, step):
-    """The chunk's points of every step-th row (and the last row), with the row starts moved so
-    each kept point keeps its index in its row (the points between were taken out)."""
-    if step == 1:
-        return _Chunk(block, info)
-    g0, r0, starts, sizes, M = info
-    r = block[:, 3].astype(np.int64)
-    keep = (r % step == 0) | (r == M - 1)
-    removed = np.cumsum(~keep)
-    first = np.flatnonzero(np.diff(r, prepend=-1))  # each row's first point in the chunk
-    starts = starts.copy()
-    starts[r[first] - r0] -= removed[first] - ~keep[first]
-    return _Chunk(block[keep], (g0, r0, starts, sizes, M))
-
-
-def _partial(chunk, centre, nu, nv, spec):
-    block, info = chunk.block, chunk.info
-    return _sfit._partial_normal_equations(block, info[0], info[1], info[2], info[3], info[4],
-                                           centre, nu, nv, *spec)
-
-
-def _deviation(chunk, centre, control, spec):
-    block, info = chunk.block, chunk.info
-    if len(block) == 0:
-        return np.zeros(3)
-    return _sfit._chunk_deviation(block, info[0], info[1], info[2], info[3], info[4], centre,
-                                  control, *spec)
 
 
 # ---------------------------------------------------------------------------- the client
@@ -106,33 +69,53 @@ class DaskFit:
 
 class _Runner:
     """Computes collections on the default Dask scheduler (a distributed Client where one is
-    active), with distributed.progress() when asked."""
+    active), with distributed.progress() when asked; logs each pass (what, rows step,
+    seconds of wall) for the report."""
 
     def __init__(self, progress):
         self.progress = progress
+        self.log = []
         try:
             from distributed import default_client
             self.client = default_client()
         except (ImportError, ValueError):
             self.client = None
 
-    def persist(self, *collections):
+    def persist(self, what, step, *collections):
+        """Persists on the workers and waits (so the pass is timed as itself)."""
         import dask
 
+        t = time.perf_counter()
         if self.client is None:
-            return dask.persist(*collections)
-        return self.client.persist(list(collections))
+            out = dask.persist(*collections)
+        else:
+            from distributed import futures_of, wait
 
-    def __call__(self, *collections):
+            out = self.client.persist(list(collections))
+            if self.progress:
+                from distributed import progress
+                progress(out)
+            wait(futures_of(out))
+        self.log.append({"pass": what, "rows_step": step,
+                         "seconds": round(time.perf_counter() - t, 3)})
+        return out
+
+    def __call__(self, what, step, *collections):
         import dask
 
+        t = time.perf_counter()
         if self.client is None:
-            return dask.compute(*collections)
-        futures = self.client.compute(list(collections))
-        if self.progress:
-            from distributed import progress
-            progress(futures)
-        return self.client.gather(futures)
+            out = dask.compute(*collections)
+        else:
+            futures = self.client.compute(list(collections))
+            if self.progress:
+                from distributed import progress
+                progress(futures)
+            out = self.client.gather(futures)
+        if what is not None:  # None: no pass over the points (results already on the workers)
+            self.log.append({"pass": what, "rows_step": step,
+                             "seconds": round(time.perf_counter() - t, 3)})
+        return out
 
 
 def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, closed="",
@@ -148,11 +131,12 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     parameters: "uniform" (default) or "paper". counts: (nu, nv) to fit at, no search.
     split_every: the tree reduction's fan-in. progress: distributed.progress() per pass.
     sample_points: above this many points the counts are searched on every k-th row (about
-    this many points; each chunk filtered once by its worker and kept there), then verified on
-    every point and raised until they hold there (coarse to fine: two passes over all the
-    points where the sample's pair holds).
-    Returns a DaskFit equal to in_memory_fit() of the same points at the same counts. Raises
-    sfit.Error ("usage", "input-data", "tolerance-not-met" when no pair holds T).
+    this many points; kept by each chunk's worker from the statistics' pass), then verified
+    on every point and raised until they hold there (coarse to fine: three passes over all
+    the points in all where the sample's pair holds).
+    Returns a DaskFit (its report's "passes": every pass with its row step and seconds) equal
+    to in_memory_fit() of the same points at the same counts. Raises sfit.Error ("usage",
+    "input-data", "tolerance-not-met" when no pair holds T).
     """
     import dask
     import dask.array as da
@@ -175,9 +159,21 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     run = _Runner(progress)
     X = _as_points(points, rows)
 
-    # Pass 1: the box and each row's points (a row may span chunks).
+    # Pass 1: the box and each row's points (a row may span chunks); above sample_points, in
+    # the same pass, each chunk's points of every step-th row kept on its worker for the search.
     blocks = list(X.to_delayed().ravel())
-    stats = run(*[dask.delayed(_block_stats, pure=True)(b) for b in blocks])
+    step_n = 1
+    if counts is None and X.shape[0] > sample_points:
+        step_n = -(-X.shape[0] // sample_points)
+    firsts = None
+    if step_n == 1:
+        stats = run("statistics", 1,
+                    *[dask.delayed(_block_stats, pure=True)(b) for b in blocks])
+    else:
+        firsts = run.persist(f"statistics, sample of every {step_n}th row", 1,
+                             *[dask.delayed(_first_pass, pure=True)(b, step_n)
+                               for b in blocks])
+        stats = run(None, 0, *[dask.delayed(_stats_of, pure=True)(f) for f in firsts])
     sizes_of_chunks = np.array(X.chunks[0], dtype=np.int64)
     g0 = np.concatenate([[0], np.cumsum(sizes_of_chunks)])[:-1]
     used = [i for i, s in enumerate(stats) if s is not None]
@@ -224,6 +220,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         r0, r1 = int(stats[i]["rows"][0]), int(stats[i]["rows"][-1]) + 1
         infos.append((int(g0[i]), r0, row_starts[r0:r1], row_sizes[r0:r1], M))
     work = [(b, info) for b, info in zip(blocks, infos) if info is not None]
+    if firsts is not None:
+        firsts = [f for f, info in zip(firsts, infos) if info is not None]
     spec = (du, dv, cu, cv, parameters)
     pairs = []
     max_u = max(du + 1, int(row_sizes.max()))
@@ -240,23 +238,29 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         parts = [da.from_delayed(dask.delayed(_partial, pure=True)(c, centre, nu, nv, spec),
                                  shape=(nbytes // 8,), dtype=float) for c in chunks_at[step]]
         total = da.stack(parts).sum(axis=0, split_every=split_every)
-        (flat,) = run(total)
+        (flat,) = run(f"normal equations {nu} x {nv}", step, total)
         kept = row_sizes[(np.arange(M) % step == 0) | (np.arange(M) == M - 1)]
         ok, control, guard = _sfit._solve_normal_equations(
             flat, nu, nv, du, dv, cu, cv, int(kept.min()), box_min, box_max)
         return control if ok else None, guard
 
-    def check(control, step):
-        """The largest deviation per axis, mapped over the chunks, max-reduced."""
-        c = dask.delayed(control, pure=True)
+    def check(control, nu, nv, step):
+        """The largest deviation per axis, mapped over the chunks, max-reduced. Small control
+        points go into each task (so Dask fuses the check into the task that reads or makes
+        the chunk, as it does the normal equations: a task with a second input, shared,
+        would not fuse, and the chunk could travel to another worker), larger ones once as a
+        shared input."""
+        c = control if control.nbytes <= INLINE_CONTROL_BYTES else \
+            dask.delayed(control, pure=True)
         parts = [da.from_delayed(dask.delayed(_deviation, pure=True)(w, centre, c, spec),
                                  shape=(3,), dtype=float) for w in chunks_at[step]]
-        (dev,) = run(da.stack(parts).max(axis=0, split_every=split_every))
+        (dev,) = run(f"check {nu} x {nv}", step,
+                     da.stack(parts).max(axis=0, split_every=split_every))
         return dev
 
     def attempt(nu, nv, step):
         control, guard = solve(nu, nv, step)
-        dev = check(control, step) if control is not None else None
+        dev = check(control, nu, nv, step) if control is not None else None
         # The round-off allowance only on an axis whose T is 0, as in the library.
         holds = dev is not None and guard is None and bool(
             np.all(dev <= T + np.where(T == 0, roundoff, 0.0)))
@@ -301,9 +305,16 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     # Each chunk as (points, rows); the sample's filtered once by its worker and kept there
     # (persisted: a probe on it reads 1/step of the points, not the chunk again).
     chunks_at = {1: [dask.delayed(_rows_sample, pure=True)(b, info, 1) for b, info in work]}
-    if step > 1:
+    if step > 1 and step == step_n:  # made in pass 1
         chunks_at[step] = list(run.persist(
+            f"sample of every {step}th row", step,
+            *[dask.delayed(_sample_of, pure=True)(f, info, step)
+              for f, (b, info) in zip(firsts, work)]))
+    elif step > 1:  # fewer rows than pass 1 assumed: a pass of its own
+        chunks_at[step] = list(run.persist(
+            f"sample of every {step}th row", 1,
             *[dask.delayed(_rows_sample, pure=True)(b, info, step) for b, info in work]))
+    firsts = None  # pass 1's points released where the sample was made (or not needed)
     stop = "minimal"
     if counts is not None:
         nu, nv = (int(c) for c in counts)
@@ -348,7 +359,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         "control_points": [nu, nv], "degree": [du, dv], "closed": [cu, cv],
         "parametrization": parameters, "method": "dask least squares",
         "pairs_tried": len(pairs), "chunks": len(work), "stop_reason": stop,
-        "rows_step": step, "full_passes": 1 + 2 * sum(p["rows_step"] == 1 for p in pairs),
+        "rows_step": step, "full_passes": sum(p["rows_step"] == 1 for p in run.log),
+        "passes": run.log,
         "partial_bytes": partial_bytes(nu, nv, du, dv),
         "roundoff": roundoff, "seconds": time.perf_counter() - t0,
     }

@@ -53,38 +53,51 @@ TensorSpec spec_of(int degree_u, int degree_v, bool closed_u, bool closed_v,
   return s;
 }
 
-// One chunk: its points (centred), the row of each, and each point's index in its row.
-struct Chunk {
-  std::vector<Point> points;
-  std::vector<long long> row, index, size;  // per point: row, index in it, the row's size
+// One chunk read in place (no copy of its points): the (m, 4) block, the centre subtracted
+// on the fly, and its runs of points of one row, each with the row, the index of its first
+// point in the row and the row's size.
+struct Run {
+  std::size_t a, b;  // the run's points [a, b) in the chunk
+  long long row, k0, size;
 };
 
+struct Chunk {
+  const double* data;  // row-major (m, 4)
+  Point centre;
+  std::vector<Run> runs;
+  Point point(std::size_t k) const {
+    const double* q = data + 4 * k;
+    return Point(q[0] - centre[0], q[1] - centre[1], q[2] - centre[2]);
+  }
+};
+
+// The runs of one block; call without the GIL (the arrays are held by the caller).
 Chunk chunk_from(const DoubleArray& block, long long g0, long long first_row,
                  const LongArray& starts, const LongArray& sizes, const Point& centre) {
   if (block.ndim() != 2 || block.shape(1) != 4)
     usage_error("points", "a chunk must be an (m, 4) array (x, y, z, row)");
-  const auto b = block.unchecked<2>();
-  const auto st = starts.unchecked<1>();
-  const auto sz = sizes.unchecked<1>();
-  const py::ssize_t m = block.shape(0);
-  Chunk c;
-  c.points.resize(m);
-  c.row.resize(m);
-  c.index.resize(m);
-  c.size.resize(m);
-  for (py::ssize_t k = 0; k < m; ++k) {
-    const long long r = static_cast<long long>(b(k, 3));
+  const std::size_t m = static_cast<std::size_t>(block.shape(0));
+  const long long rows_known = starts.shape(0);
+  if (sizes.shape(0) != rows_known) usage_error("points", "starts and sizes differ in length");
+  const long long* st = starts.data();
+  const long long* sz = sizes.data();
+  Chunk c{block.data(), centre, {}};
+  std::size_t a = 0;
+  while (a < m) {
+    const double ra = c.data[4 * a + 3];
+    std::size_t b = a + 1;
+    while (b < m && c.data[4 * b + 3] == ra) ++b;
+    const long long r = static_cast<long long>(ra);
     const long long j = r - first_row;
-    if (static_cast<double>(r) != b(k, 3) || j < 0 || j >= starts.shape(0))
-      usage_error("points", "chunk point " + std::to_string(k) + ": row " +
-                                std::to_string(b(k, 3)) + " out of the rows counted");
-    c.points[k] = Point(b(k, 0), b(k, 1), b(k, 2)) - centre;
-    c.row[k] = r;
-    c.index[k] = g0 + k - st(j);
-    c.size[k] = sz(j);
-    if (c.index[k] < 0 || c.index[k] >= c.size[k])
+    if (static_cast<double>(r) != ra || j < 0 || j >= rows_known)
+      usage_error("points", "chunk point " + std::to_string(a) + ": row " + std::to_string(ra) +
+                                " out of the rows counted");
+    const long long k0 = g0 + static_cast<long long>(a) - st[j];
+    if (k0 < 0 || k0 + static_cast<long long>(b - a) > sz[j])
       usage_error("points",
                   "rows must be stored consecutively in row order (row " + std::to_string(r) + ")");
+    c.runs.push_back(Run{a, b, r, k0, sz[j]});
+    a = b;
   }
   return c;
 }
@@ -99,10 +112,10 @@ std::vector<double> v_of(const TensorSpec& s, int nv, long long rows) {
 }
 
 // u of the points [a, b) of one row segment of the chunk at nu, as TensorProblem's moments().
-std::vector<double> u_of(const TensorSpec& s, int nu, const Chunk& c, std::size_t a,
-                         std::size_t b) {
-  const int n = static_cast<int>(c.size[a]);
-  const long long k0 = c.index[a];
+std::vector<double> u_of(const TensorSpec& s, int nu, const Run& run) {
+  const std::size_t a = run.a, b = run.b;
+  const int n = static_cast<int>(run.size);
+  const long long k0 = run.k0;
   std::vector<double> t(b - a);
   if (s.rule == Parametrization::kPaper) {
     const std::vector<double> all = paper_parameters(s.degree_u, nu, s.closed_u, n);
@@ -119,18 +132,6 @@ std::vector<double> u_of(const TensorSpec& s, int nu, const Chunk& c, std::size_
   return scaled_parameters(s.degree_u, nu, s.closed_u, f);
 }
 
-// Calls fn(a, b) for each run of points of one row in the chunk.
-template <class Fn>
-void segments(const Chunk& c, Fn fn) {
-  std::size_t a = 0;
-  while (a < c.row.size()) {
-    std::size_t b = a + 1;
-    while (b < c.row.size() && c.row[b] == c.row[a]) ++b;
-    fn(a, b);
-    a = b;
-  }
-}
-
 Point point3(py::handle h, const char* what) {
   return point_from(h, what);
 }
@@ -145,30 +146,32 @@ DoubleArray partial(const DoubleArray& block, long long g0, long long first_row,
                     py::handle centre, int nu, int nv, int degree_u, int degree_v, bool closed_u,
                     bool closed_v, const std::string& rule) {
   const TensorSpec s = spec_of(degree_u, degree_v, closed_u, closed_v, rule);
-  const Chunk c = chunk_from(block, g0, first_row, starts, sizes, point3(centre, "centre"));
+  const Point mid = point3(centre, "centre");
   DoubleArray out;
   {
     py::gil_scoped_release nogil;
+    const Chunk c = chunk_from(block, g0, first_row, starts, sizes, mid);
     NormalEquations ne(s, nu, nv, true);
     const std::vector<double> v = v_of(s, nv, rows);
     const int p = s.degree_u, w = p + 1;
     std::vector<double> G(static_cast<std::size_t>(nu) * w);
     std::vector<Point> R(static_cast<std::size_t>(nu));
     std::array<double, kMaxDegree + 1> bu;
-    segments(c, [&](std::size_t a, std::size_t b) {
-      const std::vector<double> t = u_of(s, nu, c, a, b);
+    for (const Run& run : c.runs) {
+      const std::vector<double> t = u_of(s, nu, run);
       std::fill(G.begin(), G.end(), 0.0);
       std::fill(R.begin(), R.end(), Point::Zero());
-      for (std::size_t k = a; k < b; ++k) {  // as TensorProblem's moments()
-        const int f = eval_basis(p, nu, s.closed_u, t[k - a], bu.data());
+      for (std::size_t k = run.a; k < run.b; ++k) {  // as TensorProblem's moments()
+        const Point d = c.point(k);
+        const int f = eval_basis(p, nu, s.closed_u, t[k - run.a], bu.data());
         for (int i = 0; i < w; ++i) {
           const int q = wrap_index(f + i, nu);
-          R[q] += (1.0 * bu[i]) * c.points[k];
-          for (int d = 0; i + d < w; ++d) G[q * w + d] += bu[i] * bu[i + d];
+          R[q] += (1.0 * bu[i]) * d;
+          for (int e = 0; i + e < w; ++e) G[q * w + e] += bu[i] * bu[i + e];
         }
       }
-      ne.add_row(G.data(), R.data(), v[c.row[a]]);
-    });
+      ne.add_row(G.data(), R.data(), v[run.row]);
+    }
     py::gil_scoped_acquire gil;
     out = DoubleArray(static_cast<py::ssize_t>(flat_size(ne)));
     double* o = out.mutable_data();
@@ -250,18 +253,35 @@ DoubleArray deviation(const DoubleArray& block, long long g0, long long first_ro
                       py::handle centre, const DoubleArray& control, int degree_u, int degree_v,
                       bool closed_u, bool closed_v, const std::string& rule) {
   const TensorSpec s = spec_of(degree_u, degree_v, closed_u, closed_v, rule);
-  const Chunk c = chunk_from(block, g0, first_row, starts, sizes, point3(centre, "centre"));
+  const Point mid = point3(centre, "centre");
   const Surface surface =
       surface_of(control, degree_u, degree_v, closed_u, closed_v, Point::Zero());
   Point worst = Point::Zero();
   {
     py::gil_scoped_release nogil;
+    const Chunk c = chunk_from(block, g0, first_row, starts, sizes, mid);
     const std::vector<double> v = v_of(s, surface.count_v, rows);
-    segments(c, [&](std::size_t a, std::size_t b) {
-      const std::vector<double> t = u_of(s, surface.count_u, c, a, b);
-      for (std::size_t k = a; k < b; ++k)
-        worst = worst.cwiseMax((surface.evaluate(t[k - a], v[c.row[a]]) - c.points[k]).cwiseAbs());
-    });
+    // Surface::evaluate() with the v half made once per run (a run has one v): the same
+    // arithmetic in the same order, so the same bits.
+    const int pu = surface.degree_u, pv = surface.degree_v, nu = surface.count_u;
+    std::vector<Point> curve(static_cast<std::size_t>(nu));
+    std::array<double, kMaxDegree + 1> bu, bv;
+    for (const Run& run : c.runs) {
+      const int fv = eval_basis(pv, surface.count_v, surface.periodic_v, v[run.row], bv.data());
+      for (int i = 0; i < nu; ++i) {
+        Point row = Point::Zero();
+        for (int b = 0; b <= pv; ++b)
+          row += bv[b] * surface.at(i, wrap_index(fv + b, surface.count_v));
+        curve[i] = row;
+      }
+      const std::vector<double> t = u_of(s, nu, run);
+      for (std::size_t k = run.a; k < run.b; ++k) {
+        const int fu = eval_basis(pu, nu, surface.periodic_u, t[k - run.a], bu.data());
+        Point q = Point::Zero();
+        for (int a = 0; a <= pu; ++a) q += bu[a] * curve[wrap_index(fu + a, nu)];
+        worst = worst.cwiseMax((q - c.point(k)).cwiseAbs());
+      }
+    }
   }
   DoubleArray out(3);
   for (int a = 0; a < 3; ++a) out.mutable_at(a) = worst[a];

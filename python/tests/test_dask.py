@@ -117,11 +117,32 @@ def test_a_search_on_every_kth_row_is_verified_on_every_point(cluster, data, sea
     assert r["rows_step"] == 10 and r["within_tolerance"]
     assert all(d <= t for d, t in zip(r["max_deviation"], r["tolerance"]))
     assert r["full_passes"] < searched.report["full_passes"]
+    # The sample made in the statistics' pass: one pass, then two per pair tried on every point.
+    assert r["passes"][0]["pass"] == "statistics, sample of every 10th row"
+    full_pairs = sum(p["rows_step"] == 1 for p in got.pairs)
+    assert r["full_passes"] == 1 + 2 * full_pairs
     assert r["stop_reason"].startswith(("minimal on every 10th row", "raised from"))
     nu, nv = r["control_points"]
     snu, snv = searched.report["control_points"]
     assert nu * nv <= 1.25 * snu * snv
     mem = sfit.dask.in_memory_fit(as_rows(data), (nu, nv), tol=r["tolerance"])
+    assert relative_difference(got.surface.control_points, mem.surface.control_points) < 1e-10
+
+
+def test_a_sample_of_fewer_rows_than_the_points_ask_for_takes_a_pass_of_its_own(cluster, data):
+    """Every 50th row would leave too few rows across (1000 rows: at least 64 kept), so the
+    sample is every 15th row, made in a pass of its own; the pair found still equals the
+    in-memory fit on every point."""
+    with distributed.Client(cluster):
+        x = da.from_array(data, chunks=(-(-len(data) // 16), 4)).persist()
+        got = sfit.dask.fit(x, tol_rel=1e-3, sample_points=20_000)
+    r = got.report
+    assert r["rows_step"] == 15 and r["within_tolerance"]
+    assert [p["pass"] for p in r["passes"][:3]] == [
+        "statistics, sample of every 50th row", "sample of every 15th row",
+        r["passes"][2]["pass"]] and r["passes"][2]["rows_step"] == 15
+    assert r["full_passes"] == 2 + 2 * sum(p["rows_step"] == 1 for p in got.pairs)
+    mem = sfit.dask.in_memory_fit(as_rows(data), r["control_points"], tol=r["tolerance"])
     assert relative_difference(got.surface.control_points, mem.surface.control_points) < 1e-10
 
 
