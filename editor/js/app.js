@@ -4,7 +4,7 @@
 // drawn, drag.js picks and drags, panel.js is the panel, legend.js the colour legends.
 import { $, S, hook } from "./store.js";
 import * as view from "./view.js";
-import { buildSurface, buildPoints, updateMarkers, constraintShown } from "./draw.js";
+import { buildSurface, buildPoints, updateMarkers, constraintShown, dragDetail } from "./draw.js";
 import * as panel from "./panel.js";
 import * as drag from "./drag.js";
 import * as api from "./api.js";
@@ -122,7 +122,10 @@ async function pump() {
   if (!inFlight && !pending && S.drag && job.phase === "drag") {
     clearTimeout(restTimer);
     restTimer = setTimeout(() => {  // the hand rests: the full search, a fine tessellation
-      if (S.drag && S.drag.last && !pending) queueMove({ ...S.drag.last, phase: "rest" });
+      if (S.drag && S.drag.last && !pending) {
+        dragDetail(null);  // every row drawn again while the hand rests
+        queueMove({ ...S.drag.last, phase: "rest" });
+      }
     }, hook.restMs);
   }
 }

@@ -2,7 +2,7 @@
 // their rows, the control net (drawn over the surface, its points pickable), the markers and
 // the drag's constraint (a plane patch or an axis line).
 import * as THREE from "three";
-import { $, S } from "./store.js";
+import { $, S, hook } from "./store.js";
 import { world, redraw, local } from "./view.js";
 import { sampleCounts, Tessellator } from "./bspline.js";
 import { curvatureColour, deviationColour } from "./colours.js";
@@ -210,6 +210,26 @@ export function buildPoints() {
   rowLines = new THREE.LineSegments(lg, new THREE.LineBasicMaterial({ color: 0x7a8894 }));
   rowLines.visible = $("points").checked;
   world.add(rowLines);
+}
+// On software GL (SwiftShader pays per primitive) the 10^4 data points and their row lines
+// cost most of a drag step's frame, the coarse surface little: while a point is dragged only
+// its row and the rows beside it are drawn (`row`), all of them again (null) when the hand
+// rests or lets go. Under 2000 points all are drawn.
+export function dragDetail(row) {
+  if (!pointsObj || !rowLines) return;
+  const n = pointsObj.geometry.attributes.position.count;
+  const on = row !== null && hook.softwareGL && n >= 2000 && firstOfRow[row] !== undefined;
+  const r0 = on ? Math.max(0, row - 1) : 0, r1 = on ? Math.min(S.rows.length, row + 2) : S.rows.length;
+  const first = (j) => (j < firstOfRow.length ? firstOfRow[j] : n);  // flat index of row j's first point
+  const seg = (j) => first(j) - j;  // index of row j's first line segment
+  if (!on) {
+    pointsObj.geometry.setDrawRange(0, Infinity);
+    rowLines.geometry.setDrawRange(0, Infinity);
+  } else {
+    pointsObj.geometry.setDrawRange(first(r0), first(r1) - first(r0));
+    rowLines.geometry.setDrawRange(2 * seg(r0), 2 * (seg(r1) - seg(r0)));
+  }
+  redraw();
 }
 export function showPoints(on) {
   for (const o of [pointsObj, rowLines]) if (o) o.visible = on;
