@@ -66,8 +66,10 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
     await new Promise((r) => setTimeout(r, 16));
   }
   await page.mouse.up();
-  await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging,
-    { timeout: 120000 });
+  // The hand rests after the release until the full search is done (with the shape held, the
+  // search shown beside the held surface).
+  await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging &&
+    !window.sfitEditor.searching, { timeout: 120000 });
   await page.evaluate(() => window.sfitEditor.nextFrame());  // the last latency recorded
   const { lat, times, dropped, counts } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
     times: window.sfitEditor.moves, dropped: window.sfitEditor.dropped.length, counts: window.sfitEditor.state.report.control_points }));

@@ -183,6 +183,8 @@ view.start();
 Object.defineProperty(hook, "idle", {
   get: () => hook.ready && !inFlight && !pending && !S.drag && !drag.nudging() && !view.busy() &&
     !panel.optionsBusy() && !view.renderPending() });
+// With the shape held, the full search shown after a final surface is under way.
+Object.defineProperty(hook, "searching", { get: () => searching });
 // Another client (a second page, a script) or the server (a drag whose page went away) may
 // change the session: while idle, the page asks for the version now and then and catches up.
 setInterval(async () => {
