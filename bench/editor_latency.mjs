@@ -59,12 +59,14 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.mouse.click(s.x, s.y);  // select, then drag
   await page.waitForFunction(() => window.sfitEditor.selected() !== null);
   await page.mouse.move(s.x, s.y);
+  const frames0 = await page.evaluate(() => window.sfitEditor.frames);
   await page.mouse.down();
   const moves = 60;
   for (let k = 1; k <= moves; k++) {
     await page.mouse.move(s.x + k, s.y - k);
     await new Promise((r) => setTimeout(r, 16));
   }
+  const frames = (await page.evaluate(() => window.sfitEditor.frames)) - frames0;  // drawn during the drag
   await page.mouse.up();
   // The hand rests after the release until the full search is done (with the shape held, the
   // search shown beside the held surface).
@@ -73,7 +75,7 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.evaluate(() => window.sfitEditor.nextFrame());  // the last latency recorded
   const { lat, times, dropped, counts } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
     times: window.sfitEditor.moves, dropped: window.sfitEditor.dropped.length, counts: window.sfitEditor.state.report.control_points }));
-  results.push({ moves, lat, times, dropped, counts });
+  results.push({ moves, lat, times, dropped, counts, frames });
 }
 const dragLat = results.flatMap((r) => r.lat.filter((l) => l.phase === "drag"));
 results.forEach((r, k) => {
@@ -81,7 +83,8 @@ results.forEach((r, k) => {
   const m = (key) => pctl(d.map((l) => l[key]), 0.5).toFixed(1);
   console.log(`  drag ${k + 1} (counts at its start ${k ? results[k - 1].counts.join(" x ") : "of the first fit"}): ` +
     `p50 ${m("ms")} ms, p95 ${pctl(d.map((l) => l.ms), 0.95).toFixed(1)} ms; waiting ${m("wait")}, request ${m("request")} ms ` +
-    `(refit ${m("server")}), drawing ${m("draw")}, to the next animation frame ${m("show")}; drawn ${d.length} of ${r.moves}`);
+    `(refit ${m("server")}), drawing ${m("draw")}, to the next animation frame ${m("show")}; drawn ${d.length} of ${r.moves}; ` +
+    `frames drawn during the drag ${r.frames}`);
 });
 const drag = dragLat.map((l) => l.ms);
 const fin = results.flatMap((r) => r.lat.filter((l) => l.final).map((l) => l.ms));

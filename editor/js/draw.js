@@ -222,13 +222,12 @@ export function dragDetail(row) {
   const r0 = on ? Math.max(0, row - 1) : 0, r1 = on ? Math.min(S.rows.length, row + 2) : S.rows.length;
   const first = (j) => (j < firstOfRow.length ? firstOfRow[j] : n);  // flat index of row j's first point
   const seg = (j) => first(j) - j;  // index of row j's first line segment
-  if (!on) {
-    pointsObj.geometry.setDrawRange(0, Infinity);
-    rowLines.geometry.setDrawRange(0, Infinity);
-  } else {
-    pointsObj.geometry.setDrawRange(first(r0), first(r1) - first(r0));
-    rowLines.geometry.setDrawRange(2 * seg(r0), 2 * (seg(r1) - seg(r0)));
-  }
+  const points = on ? [first(r0), first(r1) - first(r0)] : [0, Infinity];
+  const lines = on ? [2 * seg(r0), 2 * (seg(r1) - seg(r0))] : [0, Infinity];
+  const range = pointsObj.geometry.drawRange;
+  if (range.start === points[0] && range.count === points[1]) return;  // no frame of its own
+  pointsObj.geometry.setDrawRange(...points);
+  rowLines.geometry.setDrawRange(...lines);
   redraw();
 }
 export function showPoints(on) {
