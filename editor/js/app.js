@@ -4,7 +4,7 @@
 // drawn, drag.js picks and drags, panel.js is the panel, legend.js the colour legends.
 import { $, S, hook } from "./store.js";
 import * as view from "./view.js";
-import { buildSurface, buildPoints, updateMarkers, constraintShown, dragDetail } from "./draw.js";
+import { buildSurface, buildPoints, updateMarkers, constraintShown, dragDetail, warmUp } from "./draw.js";
 import * as panel from "./panel.js";
 import * as drag from "./drag.js";
 import * as api from "./api.js";
@@ -212,7 +212,7 @@ async function applyOptionsTable() {
     if (keep) $(id).value = keep;
   }
 }
-Promise.all([applyOptionsTable(), refresh()]).then(() => { hook.ready = true; }, (e) => {
+Promise.all([applyOptionsTable(), refresh()]).then(() => { warmUp(view.renderer, view.scene, view.camera); hook.ready = true; }, (e) => {
   $("status").className = "status bad";
   $("status").textContent = "cannot reach the server: " + e.message;
 });

