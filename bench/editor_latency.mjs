@@ -6,8 +6,11 @@
 // their own; every mouse event is also timed to the first frame showing it or a newer step.
 // Reports p50/p95, the moves drawn and superseded, and the machine's load (1-minute load
 // average, at the start and the end). A benchmark, not a test: nothing is asserted.
+// `hold`: with the shape held (calm sculpting: the release's full search is shown, the counts
+// and rule kept), so the second drag runs at the first fit's counts too; without it the
+// release's full search replaces the surface (94 x 96 control points after the first drag).
 // Usage (after building; editor/node_modules from `npm ci`):
-//   SFIT_CLI=build/apps/sfit/sfit nice node bench/editor_latency.mjs [rows] [points per row]
+//   SFIT_CLI=build/apps/sfit/sfit nice node bench/editor_latency.mjs [rows] [points per row] [hold]
 import { writeFileSync, mkdtempSync, rmSync } from "node:fs";
 import { tmpdir, loadavg, cpus } from "node:os";
 import { join } from "node:path";
@@ -17,6 +20,7 @@ skipUnlessChromium();
 const SFIT = process.env.SFIT_CLI;
 if (!SFIT) throw new Error("set SFIT_CLI to the built sfit");
 const M = Number(process.argv[2] || 100), N = Number(process.argv[3] || 100);
+const hold = process.argv[4] === "hold";
 
 const terrain = (s, t) => [100 * s, 100 * t,
   10 * Math.sin(3 * s) * Math.cos(2 * t) + 5 * s * t * t + 0.5 * Math.sin(17 * s + 11 * t)];
@@ -37,6 +41,10 @@ const browser = await launch(puppeteer);
 const page = await browser.newPage();
 await page.goto(ed.url);
 await page.waitForFunction(() => window.sfitEditor && window.sfitEditor.ready, { timeout: 120000 });
+if (hold) {
+  await page.click("#hold");
+  await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.options.hold, { timeout: 60000 });
+}
 await page.evaluate(() => window.sfitEditor.nextFrame());
 
 const pctl = (xs, q) => {
@@ -51,26 +59,32 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.mouse.click(s.x, s.y);  // select, then drag
   await page.waitForFunction(() => window.sfitEditor.selected() !== null);
   await page.mouse.move(s.x, s.y);
+  const frames0 = await page.evaluate(() => window.sfitEditor.frames);
   await page.mouse.down();
   const moves = 60;
   for (let k = 1; k <= moves; k++) {
     await page.mouse.move(s.x + k, s.y - k);
     await new Promise((r) => setTimeout(r, 16));
   }
+  const frames = (await page.evaluate(() => window.sfitEditor.frames)) - frames0;  // drawn during the drag
   await page.mouse.up();
-  await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging,
-    { timeout: 120000 });
+  // The hand rests after the release until the full search is done (with the shape held, the
+  // search shown beside the held surface).
+  await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging &&
+    !window.sfitEditor.searching, { timeout: 120000 });
   await page.evaluate(() => window.sfitEditor.nextFrame());  // the last latency recorded
   const { lat, times, dropped, counts } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
     times: window.sfitEditor.moves, dropped: window.sfitEditor.dropped.length, counts: window.sfitEditor.state.report.control_points }));
-  results.push({ moves, lat, times, dropped, counts });
+  results.push({ moves, lat, times, dropped, counts, frames });
 }
 const dragLat = results.flatMap((r) => r.lat.filter((l) => l.phase === "drag"));
 results.forEach((r, k) => {
   const d = r.lat.filter((l) => l.phase === "drag");
+  const m = (key) => pctl(d.map((l) => l[key]), 0.5).toFixed(1);
   console.log(`  drag ${k + 1} (counts at its start ${k ? results[k - 1].counts.join(" x ") : "of the first fit"}): ` +
-    `p50 ${pctl(d.map((l) => l.ms), 0.5).toFixed(1)} ms, request ${pctl(d.map((l) => l.request), 0.5).toFixed(1)} ms ` +
-    `(refit ${pctl(d.map((l) => l.server), 0.5).toFixed(1)}), drawn ${d.length} of ${r.moves}`);
+    `p50 ${m("ms")} ms, p95 ${pctl(d.map((l) => l.ms), 0.95).toFixed(1)} ms; waiting ${m("wait")}, request ${m("request")} ms ` +
+    `(refit ${m("server")}), drawing ${m("draw")}, to the next animation frame ${m("show")}; drawn ${d.length} of ${r.moves}; ` +
+    `frames drawn during the drag ${r.frames}`);
 });
 const drag = dragLat.map((l) => l.ms);
 const fin = results.flatMap((r) => r.lat.filter((l) => l.final).map((l) => l.ms));
@@ -93,7 +107,7 @@ console.log(`load average (1 min) ${loadStart.toFixed(2)} at the start, ${loadEn
   `moves drawn ${drag.length}, superseded by a newer one ${moves - drag.length} (of ${moves}); ` +
   `full searches while the hand rested ${results.reduce((s, r) => s + r.lat.filter((l) => l.phase === "rest").length, 0)} drawn, ` +
   `${results.reduce((s, r) => s + r.dropped, 0)} dropped as the hand moved on; counts after each drag ${results.map((r) => r.counts.join(" x ")).join(", ")}`);
-console.log(`points ${M * N} (${compositing}): mouse event -> new frame shown, quick (drag) p50 ${pctl(drag, 0.5).toFixed(1)} ms, ` +
+console.log(`points ${M * N} (${compositing}${hold ? ", shape held" : ""}): mouse event -> new frame shown, quick (drag) p50 ${pctl(drag, 0.5).toFixed(1)} ms, ` +
   `p95 ${pctl(drag, 0.95).toFixed(1)} ms (${drag.length} of ${moves} moves shown, the rest overtaken); ` +
   `every mouse event to the first frame showing it or a newer step: p50 ${pctl(every, 0.5).toFixed(1)} ms, ` +
   `p95 ${pctl(every, 0.95).toFixed(1)} ms; final refit after release p50 ${pctl(fin, 0.5).toFixed(1)} ms`);

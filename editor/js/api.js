@@ -29,12 +29,13 @@ async function send(method, path, body) {
 }
 
 export const getState = (rows = true) => call("GET", `/api/state${rows ? "" : "?rows=0"}`);
-// A drag step's answer comes with its control points packed (exact doubles in base64, far
-// cheaper than JSON numbers for thousands of them); unpacked here into the surface contract.
+// A drag step's answer comes with its control points packed as floats for drawing (base64,
+// far cheaper than JSON numbers for thousands of them, half the bytes of exact doubles; the
+// final surface at rest comes exact); unpacked here into the surface contract.
 export const edit = async (op, rows = true) => {
   const drag = op.phase === "drag";
-  const st = await call("POST", `/api/edit${rows ? "" : "?rows=0"}${drag ? (rows ? "?" : "&") + "pack=1" : ""}`, op);
-  if (st.surface && st.surface.control_points_f64) unpack(st.surface);
+  const st = await call("POST", `/api/edit${rows ? "" : "?rows=0"}${drag ? (rows ? "?" : "&") + "pack=f32" : ""}`, op);
+  if (st.surface && st.surface.control_points_shape) unpack(st.surface);
   return st;
 };
 

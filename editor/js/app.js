@@ -4,7 +4,7 @@
 // drawn, drag.js picks and drags, panel.js is the panel, legend.js the colour legends.
 import { $, S, hook } from "./store.js";
 import * as view from "./view.js";
-import { buildSurface, buildPoints, updateMarkers, constraintShown } from "./draw.js";
+import { buildSurface, buildPoints, updateMarkers, constraintShown, dragDetail, warmUp } from "./draw.js";
 import * as panel from "./panel.js";
 import * as drag from "./drag.js";
 import * as api from "./api.js";
@@ -122,7 +122,10 @@ async function pump() {
   if (!inFlight && !pending && S.drag && job.phase === "drag") {
     clearTimeout(restTimer);
     restTimer = setTimeout(() => {  // the hand rests: the full search, a fine tessellation
-      if (S.drag && S.drag.last && !pending) queueMove({ ...S.drag.last, phase: "rest" });
+      if (S.drag && S.drag.last && !pending) {
+        dragDetail(null);  // every row drawn again while the hand rests
+        queueMove({ ...S.drag.last, phase: "rest" });
+      }
     }, hook.restMs);
   }
 }
@@ -180,6 +183,8 @@ view.start();
 Object.defineProperty(hook, "idle", {
   get: () => hook.ready && !inFlight && !pending && !S.drag && !drag.nudging() && !view.busy() &&
     !panel.optionsBusy() && !view.renderPending() });
+// With the shape held, the full search shown after a final surface is under way.
+Object.defineProperty(hook, "searching", { get: () => searching });
 // Another client (a second page, a script) or the server (a drag whose page went away) may
 // change the session: while idle, the page asks for the version now and then and catches up.
 setInterval(async () => {
@@ -207,7 +212,7 @@ async function applyOptionsTable() {
     if (keep) $(id).value = keep;
   }
 }
-Promise.all([applyOptionsTable(), refresh()]).then(() => { hook.ready = true; }, (e) => {
+Promise.all([applyOptionsTable(), refresh()]).then(() => { warmUp(view.renderer, view.scene, view.camera); hook.ready = true; }, (e) => {
   $("status").className = "status bad";
   $("status").textContent = "cannot reach the server: " + e.message;
 });

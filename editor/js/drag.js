@@ -8,7 +8,7 @@
 import * as THREE from "three";
 import { $, S, hook } from "./store.js";
 import { canvas, controls, camera, coarseImage, redraw, screenOf, rayOf, local, global, fitView } from "./view.js";
-import { moveDrawnPoint, updateMarkers, showConstraint, netPointNear } from "./draw.js";
+import { moveDrawnPoint, updateMarkers, showConstraint, netPointNear, dragDetail } from "./draw.js";
 import { evaluate } from "./bspline.js";
 
 const PICK_PX = 12;
@@ -170,6 +170,7 @@ canvas.addEventListener(moveEvent, (e) => {
   // Coordinates the constraint keeps (an axis plane's, an axis line's others) are kept
   // exactly, not recomputed through the ray (the view's offset and round-off).
   for (const a of keptAxes(d.c)) to[a] = d.start[a];
+  dragDetail(d.row);  // the other rows' points come back when the hand rests
   setPoint(d.row, d.index, to);
   d.last = { row: d.row, index: d.index, to };
   hook.moves.push(e.timeStamp);
@@ -184,6 +185,7 @@ function finishDrag() {
   S.drag = null;
   controls.enabled = true;
   coarseImage(false);
+  dragDetail(null);
   showConstraint(null);
   return d;
 }

@@ -2,7 +2,7 @@
 // their rows, the control net (drawn over the surface, its points pickable), the markers and
 // the drag's constraint (a plane patch or an axis line).
 import * as THREE from "three";
-import { $, S } from "./store.js";
+import { $, S, hook } from "./store.js";
 import { world, redraw, local } from "./view.js";
 import { sampleCounts, Tessellator } from "./bspline.js";
 import { curvatureColour, deviationColour } from "./colours.js";
@@ -211,6 +211,25 @@ export function buildPoints() {
   rowLines.visible = $("points").checked;
   world.add(rowLines);
 }
+// On software GL (SwiftShader pays per primitive) the 10^4 data points and their row lines
+// cost most of a drag step's frame, the coarse surface little: while a point is dragged only
+// its row and the rows beside it are drawn (`row`), all of them again (null) when the hand
+// rests or lets go. Under 2000 points all are drawn.
+export function dragDetail(row) {
+  if (!pointsObj || !rowLines) return;
+  const n = pointsObj.geometry.attributes.position.count;
+  const on = row !== null && hook.softwareGL && n >= 2000 && firstOfRow[row] !== undefined;
+  const r0 = on ? Math.max(0, row - 1) : 0, r1 = on ? Math.min(S.rows.length, row + 2) : S.rows.length;
+  const first = (j) => (j < firstOfRow.length ? firstOfRow[j] : n);  // flat index of row j's first point
+  const seg = (j) => first(j) - j;  // index of row j's first line segment
+  const points = on ? [first(r0), first(r1) - first(r0)] : [0, Infinity];
+  const lines = on ? [2 * seg(r0), 2 * (seg(r1) - seg(r0))] : [0, Infinity];
+  const range = pointsObj.geometry.drawRange;
+  if (range.start === points[0] && range.count === points[1]) return;  // no frame of its own
+  pointsObj.geometry.setDrawRange(...points);
+  rowLines.geometry.setDrawRange(...lines);
+  redraw();
+}
 export function showPoints(on) {
   for (const o of [pointsObj, rowLines]) if (o) o.visible = on;
   redraw();
@@ -281,19 +300,23 @@ export function updateMarkers(fails = false) {
 // The drag's constraint: a translucent patch of its plane or a line along its axis, through
 // the point where the drag started.
 let gizmo = null;
+const planeMaterial = new THREE.MeshBasicMaterial({ color: 0x40a0ff, transparent: true, opacity: 0.3,
+  side: THREE.DoubleSide, depthWrite: false });
+const axisMaterials = new Map();  // by colour
+const axisMaterial = (colour) => axisMaterials.get(colour) ||
+  axisMaterials.set(colour, new THREE.LineBasicMaterial({ color: colour, depthTest: false })).get(colour);
 export function showConstraint(c, origin) {
   if (gizmo) { world.remove(gizmo); gizmo.geometry.dispose(); gizmo = null; }
   if (!c) return redraw();
   const size = S.diagonal * 0.18;
   if (c.kind === "plane") {
     const g = new THREE.PlaneGeometry(size, size);
-    gizmo = new THREE.Mesh(g, new THREE.MeshBasicMaterial({ color: 0x40a0ff, transparent: true, opacity: 0.3,
-      side: THREE.DoubleSide, depthWrite: false }));
+    gizmo = new THREE.Mesh(g, planeMaterial);
     gizmo.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), c.n);
   } else {
     const d = c.d.clone().multiplyScalar(S.diagonal);
     const g = new THREE.BufferGeometry().setFromPoints([d.clone().negate(), d]);
-    gizmo = new THREE.Line(g, new THREE.LineBasicMaterial({ color: c.colour || 0x40ffa0, depthTest: false }));
+    gizmo = new THREE.Line(g, axisMaterial(c.colour || 0x40ffa0));
   }
   gizmo.position.copy(origin);
   gizmo.renderOrder = 2;
@@ -303,3 +326,19 @@ export function showConstraint(c, origin) {
 }
 export const constraintShown = () => (gizmo ? gizmo.name : null);
 export { local };
+
+/// Draws the constraint's plane once, unseen (opacity 0: the same shaders and the same
+/// blending), before the first drag: a software rasteriser compiles a program and its
+/// drawing state when they are first drawn, which made the first drag's first step wait
+/// for a task of 175-190 ms (96-104 ms with this; the browser's long tasks, load 7).
+export function warmUp(renderer, scene, camera) {
+  const plane = new THREE.Mesh(new THREE.PlaneGeometry(S.diagonal * 0.18, S.diagonal * 0.18), planeMaterial);
+  const opacity = planeMaterial.opacity;
+  planeMaterial.opacity = 0;
+  world.add(plane);
+  renderer.render(scene, camera);
+  world.remove(plane);
+  plane.geometry.dispose();
+  planeMaterial.opacity = opacity;
+  redraw();
+}

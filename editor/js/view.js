@@ -43,7 +43,9 @@ export function coarseImage(on) {
   renderer.setPixelRatio((window.devicePixelRatio || 1) * (on ? 0.5 : 1));
   resize();
 }
+let box = null;  // the canvas's box on the page (canvasBox())
 export function resize() {
+  box = null;
   const w = viewEl.clientWidth, h = viewEl.clientHeight;
   renderer.setSize(w, h);
   camera.aspect = w / Math.max(1, h);
@@ -142,13 +144,17 @@ export function start() { resize(); requestAnimationFrame(loop); }
 // ---- screen and rays ---------------------------------------------------------------------
 export const local = (p) => new THREE.Vector3(p[0] - S.centre[0], p[1] - S.centre[1], p[2] - S.centre[2]);
 export const global = (v) => [v.x + S.centre[0], v.y + S.centre[1], v.z + S.centre[2]];
+// The canvas's box on the page, kept until it is resized or the page scrolled: reading it
+// forces a layout of the page (the panel changed by the last answer) at every mouse event.
+const canvasBox = () => box || (box = canvas.getBoundingClientRect());
+window.addEventListener("scroll", () => { box = null; }, true);
 export function screenOf(p) {
   const v = local(p).project(camera);
-  const r = canvas.getBoundingClientRect();
+  const r = canvasBox();
   return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height, z: v.z };
 }
 export function rayOf(e) {
-  const r = canvas.getBoundingClientRect();
+  const r = canvasBox();
   const ndc = new THREE.Vector2(((e.clientX - r.left) / r.width) * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1);
   const ray = new THREE.Raycaster();
   ray.setFromCamera(ndc, camera);

@@ -207,13 +207,29 @@ test("a drag is one undo step; its quick refits are not final; stale drag steps 
   const same = (await api.get("/api/state?rows=0")).json;  // the same quick state, unpacked
   assert.equal(same.version, packed.json.version);
   assert.deepEqual(unpack(packed.json.surface), same.surface, "packed control points are exact");
-  r = packed;
+  // ?pack=f32 (the page's drag steps): floats less the middle of the control points' box,
+  // within 1e-7 of the box's size of the exact ones; everything else as exact.
+  const f32 = await api.post("/api/edit?rows=0&pack=f32", { op: "move", row: 6, index: 4, to: [p[0], p[1], p[2] + 0.5], phase: "drag", seq: 111 });
+  assert.equal(f32.json.surface.control_points, undefined);
+  assert.equal(f32.json.surface.control_points_f64, undefined);
+  assert.equal(typeof f32.json.surface.control_points_f32, "string");
+  const exact = (await api.get("/api/state?rows=0")).json;
+  assert.equal(exact.version, f32.json.version);
+  const near = unpack(f32.json.surface);
+  const flat = exact.surface.control_points.flat();
+  const lo = [0, 1, 2].map((a) => Math.min(...flat.map((q) => q[a]))), hi = [0, 1, 2].map((a) => Math.max(...flat.map((q) => q[a])));
+  const box = Math.max(...[0, 1, 2].map((a) => hi[a] - lo[a]));
+  const off = Math.max(...near.control_points.flat().map((q, k) => Math.max(...q.map((x, a) => Math.abs(x - flat[k][a])))));
+  assert.ok(off <= 1e-7 * box, `f32 control points off by ${off} (box ${box})`);
+  assert.ok(off > 0 || flat.every((q) => q.every((x) => Math.fround(x) === x)), "f32 is not the exact doubles' path");
+  assert.deepEqual({ ...near, control_points: null }, { ...exact.surface, control_points: null }, "the rest of the surface as exact");
+  r = f32;
   // A step numbered below one already answered (a reloaded page counting from 1 again) is
   // refitted: only a step that a newer one overtook while it waited is skipped
   // (editor_server_test, DragSteps).
   const again = await api.post("/api/edit", { op: "move", row: 6, index: 4, to: [p[0], p[1], p[2] + 0.45], phase: "drag", seq: 101 });
   assert.equal(again.json.skipped, false);
-  assert.equal(again.json.version, r.json.version + 1);  // r: the packed step
+  assert.equal(again.json.version, r.json.version + 1);  // r: the last packed step
   r = await api.post("/api/edit", { op: "move", row: 6, index: 4, to: [p[0], p[1], p[2] + 0.5], phase: "rest", seq: 106 });
   assert.equal(r.json.final, true);
   assert.equal(r.json.dragging, true);

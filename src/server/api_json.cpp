@@ -252,26 +252,43 @@ std::string base64(const unsigned char* data, std::size_t n) {
 }
 
 // The surface contract with the control points packed (state_json()).
-json packed_surface_json(const Surface& s) {
-  static_assert(std::endian::native == std::endian::little, "packed doubles are little-endian");
+json packed_surface_json(const Surface& s, Pack pack) {
+  static_assert(std::endian::native == std::endian::little, "packed numbers are little-endian");
   json j = io::surface_header_to_json(s);
   const int fu = s.full_count_u(), fv = s.full_count_v();
-  std::vector<double> xyz;
-  xyz.reserve(static_cast<std::size_t>(fu) * fv * 3);
+  std::vector<Point> cp;
+  cp.reserve(static_cast<std::size_t>(fu) * fv);
   for (int i = 0; i < fu; ++i)
-    for (int l = 0; l < fv; ++l) {
-      const Point p = s.full_at(i, l);
-      xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
-    }
+    for (int l = 0; l < fv; ++l) cp.push_back(s.full_at(i, l));
   j["control_points_shape"] = {fu, fv};
-  j["control_points_f64"] =
-      base64(reinterpret_cast<const unsigned char*>(xyz.data()), xyz.size() * sizeof(double));
+  const auto bytes = [](const auto& v) {
+    return base64(reinterpret_cast<const unsigned char*>(v.data()), v.size() * sizeof v[0]);
+  };
+  if (pack == Pack::kF64) {
+    std::vector<double> xyz;
+    xyz.reserve(3 * cp.size());
+    for (const Point& p : cp) xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
+    j["control_points_f64"] = bytes(xyz);
+    return j;
+  }
+  Point lo = cp.front(), hi = cp.front();
+  for (const Point& p : cp) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Point origin = (lo + hi) / 2;
+  std::vector<float> xyz;
+  xyz.reserve(3 * cp.size());
+  for (const Point& p : cp)
+    for (int a = 0; a < 3; ++a) xyz.push_back(static_cast<float>(p[a] - origin[a]));
+  j["control_points_origin"] = {origin.x(), origin.y(), origin.z()};
+  j["control_points_f32"] = bytes(xyz);
   return j;
 }
 
 }  // namespace
 
-json state_json(const Session& s, bool with_rows, bool packed) {
+json state_json(const Session& s, bool with_rows, Pack pack) {
   const FitResult& fit = s.shown();
   const Rows& rows = s.shown_rows();
   const FitReport& r = fit.report;
@@ -284,7 +301,8 @@ json state_json(const Session& s, bool with_rows, bool packed) {
   j["final"] = s.final();
   j["dragging"] = s.dragging();
   j["checked"] = r.points == rows.total_points();
-  j["surface"] = packed ? packed_surface_json(fit.surface) : io::surface_to_json(fit.surface);
+  j["surface"] = pack == Pack::kNone ? io::surface_to_json(fit.surface)
+                                     : packed_surface_json(fit.surface, pack);
   j["report"] = io::report_to_json(r);
   j["deviation"] = {{"max", point_json(r.max_deviation)},
                     {"tolerance", point_json(r.tolerance)},

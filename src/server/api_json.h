@@ -11,13 +11,18 @@
 
 namespace sfit::server {
 
-/// The state: rows (optional, they are the bulk), surface (the JSON surface contract), report,
-/// whether the surface is final, the deviation against T, options, undo and redo depths.
-/// `packed`: the surface's control points as "control_points_f64" (base64 of the little-endian
-/// doubles, x y z of each in the order of "control_points") and "control_points_shape"
-/// [rows, columns] instead of the nested array: exact, and far cheaper to write and read for
-/// a drag step of a surface with thousands of control points.
-nlohmann::json state_json(const Session& session, bool with_rows, bool packed = false);
+/// How the surface's control points travel in a state: the contract's nested array; packed
+/// exactly ("control_points_f64": base64 of the little-endian doubles, x y z of each point in
+/// the order of "control_points", and "control_points_shape" [rows, columns]); or packed for
+/// drawing ("control_points_f32": floats of each point less "control_points_origin", the
+/// middle of their box, within 1e-7 of the box's size: for a drag step's frame, half the
+/// bytes).
+enum class Pack { kNone, kF64, kF32 };
+
+/// The state: rows (optional, they are the bulk), surface (the JSON surface contract, its
+/// control points as `pack` says), report, whether the surface is final, the deviation
+/// against T, options, undo and redo depths.
+nlohmann::json state_json(const Session& session, bool with_rows, Pack pack = Pack::kNone);
 
 /// The fit options as the API shows and takes them.
 nlohmann::json options_json(const FitOptions& o);

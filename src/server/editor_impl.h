@@ -99,8 +99,8 @@ struct EditorServer::Impl {
     return f;
   }
 
-  json state(bool with_rows, bool packed = false) {
-    json j = state_json(session, with_rows, packed);
+  json state(bool with_rows, Pack pack = Pack::kNone) {
+    json j = state_json(session, with_rows, pack);
     j["input"] = config.input;
     j["exports"] = formats();
     j["saved"] = saved_once;

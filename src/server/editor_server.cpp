@@ -39,8 +39,10 @@ void EditorServer::Impl::session_routes() {
     }
     const bool drag = body.value("phase", json()) == "drag";
     const bool rest = body.value("phase", json()) == "rest";
-    // ?pack=1: the control points as packed doubles (api_json.h), e.g. for a drag's steps.
-    const bool packed = req.has_param("pack") && req.get_param_value("pack") == "1";
+    // ?pack=1: the control points as packed doubles, ?pack=f32 as floats for drawing
+    // (api_json.h), e.g. for a drag's steps.
+    const std::string pack_as = req.has_param("pack") ? req.get_param_value("pack") : "";
+    const Pack packed = pack_as == "1" ? Pack::kF64 : pack_as == "f32" ? Pack::kF32 : Pack::kNone;
     if (drag) search.cancel();  // a full search at rest under way is stale now
     guarded(
         res,
