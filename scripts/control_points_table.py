@@ -94,7 +94,10 @@ def fit(sfit, path, frac, closed, method, repeats, checker=None):
         out = {"nu": nu, "nv": nv, "cpu": best, "fit_s": r["seconds"],
                "within": r["within_tolerance"], "parameters": r["parameters"],
                "stop": r.get("stop_reason", ""), "method": r.get("method", method),
-               "pairs": r.get("pairs_tried", 0)}
+               "pairs": r.get("pairs_tried", 0),
+               # The knot rule, where the report names one (uniform knots before it did).
+               "knots": r.get("knots", "uniform") if isinstance(r.get("knots", "uniform"), str)
+               else "uniform"}
         if checker:
             # The same default fit in the peer benchmark's process (docs/bench_peers.md), its
             # surface checked there by closest-point distances.
@@ -149,9 +152,9 @@ def main():
         files += generate(a.generated)
     peers = best_peers(a.peers_table)
     print(f"Load average at start: {open('/proc/loadavg').read().split()[0]}.\n")
-    print("| data | T / diag | default nu x nv | rule | sfit01 nu x nv | best peer within T | "
+    print("| data | T / diag | default nu x nv | rule | knots | sfit01 nu x nv | best peer within T | "
           "default / peer | points > T (checker) | CPU s default / sfit01 | ratio |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     ratios, times = [], []
     for path in files:
         closed = closed_u(path)
@@ -161,10 +164,12 @@ def main():
             d = fit(a.sfit, path, frac, closed, "surface", a.repeats, a.checker)
             s = fit(a.sfit, path, frac, closed, "sfit01", a.repeats)
             if not d or not s:
-                print(f"| {name} | {label} | failed | | | | | | | |")
+                print(f"| {name} | {label} | failed | | | | | | | | |")
                 continue
             nd, ns = d["nu"] * d["nv"], s["nu"] * s["nv"]
             rule = d["parameters"] if d["method"] == "surface" else "(sfit01's)"
+            if "the rows took all of T" in d["stop"]:
+                rule = "(sfit01's, rows at T)"
             peer = peers.get((name, frac))
             vs = ""
             if peer:
@@ -172,7 +177,7 @@ def main():
                 vs = f"{nd / peer[0]:.2f}"
             check = d.get("check", {}).get("out_of_tolerance", "")
             times.append(d["cpu"] / s["cpu"])
-            print(f"| {name} | {label} | {d['nu']} x {d['nv']} = {nd} | {rule} | "
+            print(f"| {name} | {label} | {d['nu']} x {d['nv']} = {nd} | {rule} | {d['knots']} | "
                   f"{s['nu']} x {s['nv']} = {ns} | "
                   f"{f'{peer[0]} ({peer[1]})' if peer else '-'} | {vs} | {check} | "
                   f"{d['cpu']:.3f} / {s['cpu']:.3f} | {d['cpu'] / s['cpu']:.1f} |")
