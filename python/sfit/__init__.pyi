@@ -45,6 +45,7 @@ class Surface:
     count: tuple[int, int]
     knots_u: npt.NDArray[np.float64]
     knots_v: npt.NDArray[np.float64]
+    uniform_knots: tuple[bool, bool]
     control_points: npt.NDArray[np.float64]  # (nu_full, nv_full, 3), stored form
     u_end: float
     v_end: float
