@@ -3,14 +3,17 @@
 
 #include <vector>
 
+#include "sfit/knot_vector.h"
 #include "sfit/rows.h"
 
 namespace sfit {
 
-/// S(u,v) = sum_i sum_j B_i,degree_u(u) B_j,degree_v(v) P_ij on uniform knots, u along the
-/// rows, v across them. `control` holds the distinct control points, row-major in i:
-/// P_ij = control[i * count_v + j]. A periodic direction stores its `count` distinct points;
-/// full_knots_u() and full_control() give the docs/surface-json.md form with the wrap copies.
+/// S(u,v) = sum_i sum_j B_i,degree_u(u) B_j,degree_v(v) P_ij, u along the rows, v across
+/// them, on the knots `knots_u`, `knots_v`: uniform by default (knot_vector.h), or any valid
+/// KnotVector of the same degree, count and periodic flag (set_knots_u() checks that). `control`
+/// holds the distinct control points, row-major in i: P_ij = control[i * count_v + j]. A periodic
+/// direction stores its `count` distinct points; full_knots_u() and full_control() give the
+/// docs/surface-json.md form with the wrap copies.
 struct Surface {
   int degree_u = 3;
   int degree_v = 3;
@@ -19,6 +22,15 @@ struct Surface {
   int count_u = 0;  ///< distinct control points along u (nu)
   int count_v = 0;  ///< distinct control points along v (nv)
   std::vector<Point> control;
+  KnotVector knots_u;  ///< uniform unless set: the knots along u
+  KnotVector knots_v;
+
+  /// Sets non-uniform (or uniform) knots; Error kUsage unless `k` matches the direction's
+  /// degree, count and periodic flag (a default KnotVector, uniform, always matches).
+  void set_knots_u(KnotVector k);
+  void set_knots_v(KnotVector k);
+  /// True if either direction has non-uniform knots.
+  bool non_uniform() const { return !knots_u.uniform() || !knots_v.uniform(); }
 
   const Point& at(int i, int j) const { return control[static_cast<std::size_t>(i) * count_v + j]; }
   Point& at(int i, int j) { return control[static_cast<std::size_t>(i) * count_v + j]; }

@@ -39,12 +39,19 @@ enum class FitNorm {
   kLinf,  ///< minimax: the smallest max |S - D| per axis at that pair (a linear program)
   kAuto,  ///< least squares, and minimax where least squares misses T by a little
 };
-/// "surface", "sfit01"; "l2", "linf", "auto".
+/// Where the knots go (docs/method.md, "Adaptive knots").
+enum class KnotRule {
+  kUniform,   ///< uniform knots (the paper's)
+  kAdaptive,  ///< also a fit on knots placed where the residuals concentrate, kept when smaller
+};
+/// "surface", "sfit01"; "l2", "linf", "auto"; "uniform", "adaptive".
 std::string_view to_string(FitMethod m);
 std::string_view to_string(FitNorm n);
+std::string_view to_string(KnotRule k);
 /// The inverses of to_string(); false if `name` is none of them.
 bool parse_fit_method(std::string_view name, FitMethod& out);
 bool parse_fit_norm(std::string_view name, FitNorm& out);
+bool parse_knot_rule(std::string_view name, KnotRule& out);
 
 struct FitOptions {
   int degree_u = 3;                 ///< degree along the rows, 1 ... 20
@@ -58,6 +65,10 @@ struct FitOptions {
   /// shared by every column, as the guarantee needs).
   /// kAuto: the paper's for kSfit01, each of the four rules for kSurface (as kFewest).
   Parametrization parametrization = Parametrization::kAuto;
+  /// kAdaptive: beside the uniform fit, one on knots where the shape needs them (open
+  /// directions, one v per row), kept only when it has strictly fewer control points, holds T
+  /// at every point and does not fold; so it never raises the count.
+  KnotRule knots = KnotRule::kUniform;
   /// Counts to start the searches from, e.g. a previous fit's report.row_counts and
   /// column_counts (used where their size matches the rows, the columns); kKnown takes them
   /// as the answer. Without them kFast starts each row from the previous row's count, in

@@ -45,6 +45,7 @@ class Surface:
     count: tuple[int, int]
     knots_u: npt.NDArray[np.float64]
     knots_v: npt.NDArray[np.float64]
+    uniform_knots: tuple[bool, bool]
     control_points: npt.NDArray[np.float64]  # (nu_full, nv_full, 3), stored form
     u_end: float
     v_end: float
@@ -95,6 +96,7 @@ def fit(
     closed: str = "none",
     search: str = "fast",
     parameters: str = "auto",
+    knots: str = "uniform",
     method: str = "surface",
     norm: str = "auto",
     seam: str = "align",
@@ -127,6 +129,7 @@ class IncrementalFit:
         closed: str = "none",
         search: str = "fast",
         parameters: str = "auto",
+        knots: str = "uniform",
         method: str = "surface",
         norm: str = "auto",
         seam: str = "align",

@@ -358,9 +358,10 @@ nearest of a grid of samples of the surface, kept inside the domain of an open d
           py::arg("degree_v"), py::arg("periodic_u") = false, py::arg("periodic_v") = false,
           R"(The surface with these full knot vectors, (nu_full, nv_full, 3) control points and
 degrees: the stored form Surface.knots_u, .knots_v, .control_points give back (a periodic
-direction repeats its first `degree` control points, docs/surface-json.md). sfit surfaces
-have uniform knots (degree + 1 zeros, 1, 2, ... when open; i - degree when periodic); other
-knots raise sfit.Error naming the vector.)")
+direction repeats its first `degree` control points, docs/surface-json.md). Knots may be
+non-uniform: non-decreasing, interior knots repeated at most `degree` times, degree + 1 equal
+knots at each end of an open direction, the spacing repeating with the period in a periodic
+one (the domain is shifted to begin at 0); other vectors raise sfit.Error naming the vector.)")
       .def("__getstate__", [](const Surface& s) { return io::surface_to_json_text(s); })
       .def("__reduce__",
            [](const Surface& s) {

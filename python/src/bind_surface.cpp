@@ -40,7 +40,9 @@ void save_output(const std::string& path, const Surface& surface, const PyFit* f
 }
 
 void bind_surface(py::module_& m) {
-  py::class_<Surface> c(m, "Surface", R"(A tensor-product B-spline surface on uniform knots.
+  py::class_<Surface> c(
+      m, "Surface",
+      R"(A tensor-product B-spline surface, on uniform knots unless fitted with non-uniform ones.
 
 u runs along the rows, v across them. The parameter domain is [0, u_end] x [0, v_end];
 evaluation clamps parameters into an open direction and wraps them around a periodic one.
@@ -59,7 +61,7 @@ points (nu + degree_u wrap copies in a periodic direction) as an (nu_full, nv_fu
           "(nu, nv): distinct control points in each direction")
       .def_property_readonly(
           "knots_u", [](const Surface& s) { return read_only(vector_to_array(s.full_knots_u())); },
-          "full knot vector along u (length nu_full + degree_u + 1)")
+          "full knot vector along u (length nu_full + degree_u + 1), uniform or not")
       .def_property_readonly(
           "knots_v", [](const Surface& s) { return read_only(vector_to_array(s.full_knots_v())); },
           "full knot vector along v")
@@ -75,6 +77,10 @@ points (nu + degree_u wrap copies in a periodic direction) as an (nu_full, nv_fu
             return read_only(a);
           },
           "(nu_full, nv_full, 3) array: the stored form (wrap copies in a periodic direction)")
+      .def_property_readonly(
+          "uniform_knots",
+          [](const Surface& s) { return py::make_tuple(s.knots_u.uniform(), s.knots_v.uniform()); },
+          "(u, v): True where the knots are sfit's uniform ones")
       .def_property_readonly("u_end", &Surface::u_end, "end of the u domain [0, u_end]")
       .def_property_readonly("v_end", &Surface::v_end, "end of the v domain [0, v_end]")
       .def(

@@ -170,12 +170,56 @@ def test_from_knots_round_trips_and_refuses_other_knots(open_surface, closed_sur
         assert t.to_json() == s.to_json()
     s = open_surface
     bad = s.knots_u.copy()
-    bad[s.degree_u + 1] += 0.3
+    bad[s.degree_u + 1] = bad[s.degree_u + 3] + 0.5  # decreasing
     with pytest.raises(sfit.Error) as e:
         sfit.Surface.from_knots(bad, s.knots_v, s.control_points, s.degree_u, s.degree_v)
     assert "knots_u" in str(e.value)
     with pytest.raises(sfit.Error):
         sfit.Surface.from_knots(s.knots_u, s.knots_v, s.control_points[:, :, :2], 3, 2)
+
+
+def non_uniform(s):
+    """`s` with its inner u knots moved (one made a corner: degree-fold) and its v knots
+    squeezed toward 0: a non-uniform surface of the same control points."""
+    ku = s.knots_u.copy()
+    p = s.degree_u
+    if s.periodic[0]:
+        n = len(ku) - 2 * p - 1
+        ku = ku + 0.4 * np.sin(2 * np.pi * (ku - ku[p]) / n)  # periodic spacing kept
+    else:
+        inner = ku[p + 1:len(ku) - p - 1]
+        ku[p + 1:len(ku) - p - 1] = inner ** 1.3 / inner[-1] ** 0.3
+        ku[p + 2:2 * p + 1] = ku[p + 1]  # a p-fold knot
+    kv = s.knots_v.copy()
+    if not s.periodic[1]:
+        kv = kv ** 1.5
+    return sfit.Surface.from_knots(ku, kv, s.control_points, s.degree_u, s.degree_v, *s.periodic)
+
+
+def test_non_uniform_knots_evaluate_round_trip_and_pickle(open_surface, closed_surface, tmp_path):
+    import pickle
+    for k, s in enumerate((open_surface, closed_surface)):
+        t = non_uniform(s)
+        assert t.uniform_knots[0] is False
+        assert t.to_json()["version"] == 2
+        u = np.linspace(0, t.u_end, 37)
+        v = np.linspace(0, t.v_end, 23)
+        assert np.allclose(t(u, v, grid=True), reference(t, u, v), rtol=0, atol=1e-12 * np.abs(t.control_points).max())
+        back = pickle.loads(pickle.dumps(t))
+        assert np.array_equal(back.knots_u, t.knots_u) and np.array_equal(back.knots_v, t.knots_v)
+        assert np.array_equal(back(u, v, grid=True), t(u, v, grid=True))
+        path = str(tmp_path / f"nu{k}.json")
+        t.save(path)
+        r = sfit.load_surface(path)
+        assert np.array_equal(r.knots_u, t.knots_u) and np.array_equal(r(u, v, grid=True), t(u, v, grid=True))
+        for ext in ("step", "iges"):
+            if ext not in sfit.output_formats():
+                continue
+            path = str(tmp_path / f"nu{k}.{ext}")
+            t.save(path)
+            r = sfit.load_surface(path)
+            assert np.allclose(r.knots_u, t.knots_u, rtol=0, atol=1e-12 * t.u_end)
+            assert np.allclose(r(u, v, grid=True), t(u, v, grid=True), rtol=0, atol=1e-9 * np.abs(t.control_points).max())
 
 
 @pytest.mark.parametrize("ext", ["step", "iges"])

@@ -17,6 +17,7 @@ OUTPUT = [o for o in TABLE if o["group"] == "output"]
 # Every option `sfit fit` has; the table must hold them all (a new flag of the CLI that is not
 # in the table fails test_every_flag_of_sfit_fit_is_in_the_table).
 EXPECTED = {"degree", "degree_u", "degree_v", "tol", "tol_rel", "closed", "search", "parameters",
+            "knots",
             "method", "norm", "seam", "orient", "fold_guard", "rerepresent", "threads", "mesh",
             "obj_freeform", "mesh_density", "normals", "fields", "units"}
 

@@ -121,3 +121,28 @@ def test_a_version_1_fit_state_still_reads(fits):
     assert state[0] == 2 and len(state) == 9
     old = sfit._sfit._fit_from_state((1,) + tuple(state[1:8]))
     assert np.array_equal(old.u, fits[0].u) and old.v_points.shape == (0,)
+
+
+def box_stations():
+    """Hull-like stations with a sharp chine and a sharp deck corner (generated)."""
+    rows = []
+    for t in np.linspace(0, 1, 20):
+        b, d = 5 + 1.5 * np.sin(t * np.pi), 3 + 0.6 * t
+        l0, l1, l2 = 0.6 * b, 0.8 * d, 0.4 * b
+        x = np.linspace(0, 1, 120) * (l0 + l1 + l2)
+        y = np.where(x < l0, x, np.where(x < l0 + l1, l0 + 0.1 * (x - l0), l0 + 0.1 * l1 - (x - l0 - l1)))
+        z = np.where(x < l0, 0.05 * x * x / l0, np.where(x < l0 + l1, 0.05 * l0 + (x - l0), 0.05 * l0 + l1))
+        rows.append(np.column_stack([np.full(len(x), 30 * t), y, z]))
+    return rows
+
+
+def test_adaptive_knots_fit_holds_and_travels():
+    uni = sfit.fit(box_stations())
+    f = sfit.fit(box_stations(), knots="adaptive")
+    nu, nv = f.report["control_points"]
+    assert nu * nv < 0.7 * np.prod(uni.report["control_points"])
+    assert f.surface.uniform_knots == (False, False) or f.surface.uniform_knots[0] is False
+    g = pickle.loads(pickle.dumps(f))
+    assert np.array_equal(g.surface.knots_u, f.surface.knots_u)
+    d = np.abs(g.surface(g.u, g.v[np.repeat(np.arange(len(g.row_sizes)), g.row_sizes)]) - g.points)
+    assert (d <= np.asarray(f.report["tolerance"]) * (1 + 1e-9)).all()

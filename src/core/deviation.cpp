@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "basis.h"
+#include "basis_knots.h"
 #include "parallel.h"
 
 namespace sfit {
@@ -22,7 +22,7 @@ DeviationCheck check_rows(const Surface& s, const Rows& rows, std::span<const do
   const bool per_point = v.size() != rows.size();
   for (std::size_t j = j0; j < j1; ++j) {
     // The iso-curve v = v_j: its control points Q_i = sum_l B_l(v_j) P_il, once per row.
-    const int fv = per_point ? 0 : eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
+    const int fv = per_point ? 0 : basis_v(s, v[j], bv.data());
     for (int i = 0; i < s.count_u && !per_point; ++i) {
       Point q = Point::Zero();
       for (int b = 0; b <= s.degree_v; ++b) q += bv[b] * s.at(i, wrap_index(fv + b, s.count_v));
@@ -30,7 +30,7 @@ DeviationCheck check_rows(const Surface& s, const Rows& rows, std::span<const do
     }
     const auto row = rows[j];
     for (std::size_t k = 0; k < row.size(); ++k) {
-      const int fu = eval_basis(s.degree_u, s.count_u, s.periodic_u, u[off[j] + k], bu.data());
+      const int fu = basis_u(s, u[off[j] + k], bu.data());
       Point p = Point::Zero();
       if (per_point) {
         p = point_at(s, bu.data(), fu, v[off[j] + k]);

@@ -5,7 +5,7 @@
 #include <array>
 #include <span>
 
-#include "basis.h"
+#include "basis_knots.h"
 #include "sfit/rows.h"
 #include "sfit/surface.h"
 
@@ -16,7 +16,7 @@ namespace sfit {
 /// iso-curve of the row can be shared.
 inline Point point_at(const Surface& s, const double* bu, int fu, double v) {
   std::array<double, kMaxDegree + 1> bv;
-  const int fw = eval_basis(s.degree_v, s.count_v, s.periodic_v, v, bv.data());
+  const int fw = basis_v(s, v, bv.data());
   Point p = Point::Zero();
   for (int a = 0; a <= s.degree_u; ++a) {
     Point q = Point::Zero();

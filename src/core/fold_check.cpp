@@ -8,7 +8,7 @@
 
 #include <Eigen/Geometry>
 
-#include "basis.h"
+#include "basis_knots.h"
 
 namespace sfit {
 namespace {
@@ -25,7 +25,7 @@ int spans(int count, int degree, bool periodic) {
 void column_at(const Surface& s, double u, std::vector<Point>& col, std::vector<Point>& col_u) {
   std::array<double, 2 * (kMaxDegree + 1)> bu;
   const int w = s.degree_u + 1;
-  const int fu = eval_basis_derivatives(s.degree_u, s.count_u, s.periodic_u, u, 1, bu.data());
+  const int fu = basis_derivatives_u(s, u, 1, bu.data());
   col.assign(static_cast<std::size_t>(s.count_v), Point::Zero());
   col_u.assign(static_cast<std::size_t>(s.count_v), Point::Zero());
   for (int a = 0; a <= s.degree_u; ++a) {
@@ -39,7 +39,7 @@ void column_at(const Surface& s, double u, std::vector<Point>& col, std::vector<
 
 Point column_point(const Surface& s, const std::vector<Point>& col, double v) {
   std::array<double, kMaxDegree + 1> bv;
-  const int fv = eval_basis(s.degree_v, s.count_v, s.periodic_v, v, bv.data());
+  const int fv = basis_v(s, v, bv.data());
   Point p = Point::Zero();
   for (int b = 0; b <= s.degree_v; ++b) p += bv[b] * col[wrap_index(fv + b, s.count_v)];
   return p;
@@ -53,7 +53,7 @@ Sample column_sample(const Surface& s, const std::vector<Point>& col,
                      const std::vector<Point>& col_u, double v) {
   std::array<double, 2 * (kMaxDegree + 1)> bv;
   const int w = s.degree_v + 1;
-  const int fv = eval_basis_derivatives(s.degree_v, s.count_v, s.periodic_v, v, 1, bv.data());
+  const int fv = basis_derivatives_v(s, v, 1, bv.data());
   Point p = Point::Zero(), su = Point::Zero(), sv = Point::Zero();
   for (int b = 0; b <= s.degree_v; ++b) {
     const int l = wrap_index(fv + b, s.count_v);

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "basis.h"
+#include "basis_knots.h"
 
 namespace sfit::detail {
 
@@ -32,9 +32,9 @@ Design design_of(const Rows& rows, const std::vector<double>& u, const std::vect
   d.value.resize(N * d.width);
   std::array<double, kMaxDegree + 1> bu, bv;
   for (std::size_t j = 0; j < rows.size(); ++j) {
-    const int fv = eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
+    const int fv = basis_v(s, v[j], bv.data());
     for (std::size_t k = rows.offsets()[j]; k < rows.offsets()[j + 1]; ++k) {
-      const int fu = eval_basis(s.degree_u, s.count_u, s.periodic_u, u[k], bu.data());
+      const int fu = basis_u(s, u[k], bu.data());
       int c = 0;
       for (int a = 0; a < wu; ++a)
         for (int b = 0; b < wv; ++b, ++c) {

@@ -127,6 +127,7 @@ void set_fit_option(FitSettings& st, std::string_view name, const OptionValue& v
     if (name == "closed") parse_closed(c, o.closed_u, o.closed_v);
     if (name == "search") o.search = parsed(c, parse_count_search, place);
     if (name == "parameters") o.parametrization = parsed(c, parse_parametrization, place);
+    if (name == "knots") o.knots = parsed(c, parse_knot_rule, place);
     if (name == "method") o.method = parsed(c, parse_fit_method, place);
     if (name == "norm") o.norm = parsed(c, parse_fit_norm, place);
     if (name == "seam") o.seam = parsed(c, parse_seam_mode, place);

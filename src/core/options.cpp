@@ -89,6 +89,17 @@ std::vector<OptionSpec> make_table() {
        "point's projection onto a plane or, closed rows, an axis; --method surface only), "
        "fewest (tries the rules, keeps the fewest control points), or auto (geometric and "
        "the four with --method surface, paper with --method sfit01)"},
+      {"knots",
+       "--knots",
+       fit,
+       T::kChoice,
+       "uniform",
+       0,
+       0,
+       {"uniform", "adaptive"},
+       "uniform, or adaptive (also fits on knots inserted where the residuals concentrate and "
+       "removed where not needed; kept only when smaller, within T and unfolded; open "
+       "directions)"},
       {"method",
        "--method",
        fit,

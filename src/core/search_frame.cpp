@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "basis.h"
+#include "basis_knots.h"
 #include "fit_frame.h"
 #include "minimax.h"
 #include "parallel.h"
@@ -49,8 +49,7 @@ PointsVerdict check_points(const Surface& s, const Rows& rows, std::span<const d
     PointsVerdict& out = part[b];
     const bool per_point = v.size() != M;  // FitResult::v_points
     for (std::size_t j = b * per; j < std::min(M, (b + 1) * per) && !stop.load(); ++j) {
-      const int fv =
-          per_point ? 0 : eval_basis(s.degree_v, s.count_v, s.periodic_v, v[j], bv.data());
+      const int fv = per_point ? 0 : basis_v(s, v[j], bv.data());
       for (int i = 0; i < s.count_u && !per_point; ++i) {
         Point q = Point::Zero();
         for (int c = 0; c <= s.degree_v; ++c) q += bv[c] * s.at(i, wrap_index(fv + c, s.count_v));
@@ -59,7 +58,7 @@ PointsVerdict check_points(const Surface& s, const Rows& rows, std::span<const d
       const auto row = rows[j];
       const double* uj = u.data() + rows.offsets()[j];
       for (std::size_t k = 0; k < row.size(); ++k) {
-        const int fu = eval_basis(s.degree_u, s.count_u, s.periodic_u, uj[k], bu.data());
+        const int fu = basis_u(s, uj[k], bu.data());
         Point p = Point::Zero();
         if (per_point) {
           p = point_at(s, bu.data(), fu, v[rows.offsets()[j] + k]);

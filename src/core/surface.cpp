@@ -1,23 +1,49 @@
 #include "sfit/surface.h"
 
 #include <array>
+#include <string>
 
-#include "basis.h"
+#include "basis_knots.h"
 #include "knots.h"
+#include "sfit/error.h"
 
 namespace sfit {
 
 double Surface::u_end() const {
-  return domain_end(degree_u, count_u, periodic_u);
+  return knots_u.uniform() ? domain_end(degree_u, count_u, periodic_u) : knots_u.end();
 }
 double Surface::v_end() const {
-  return domain_end(degree_v, count_v, periodic_v);
+  return knots_v.uniform() ? domain_end(degree_v, count_v, periodic_v) : knots_v.end();
+}
+
+namespace {
+void check_match(const KnotVector& k, int degree, int count, bool periodic, const char* dir) {
+  if (k.uniform()) return;
+  if (k.degree() != degree || k.count() != count || k.periodic() != periodic)
+    throw Error(ErrorCode::kUsage,
+                std::string("knots along ") + dir + " are for degree " +
+                    std::to_string(k.degree()) + ", " + std::to_string(k.count()) +
+                    " control points" + (k.periodic() ? ", periodic" : ", open") +
+                    "; the surface has degree " + std::to_string(degree) + ", " +
+                    std::to_string(count) + (periodic ? ", periodic" : ", open"),
+                Place{.option = std::string("knots_") + dir},
+                {double(k.degree()), double(k.count()), double(degree), double(count)});
+}
+}  // namespace
+
+void Surface::set_knots_u(KnotVector k) {
+  check_match(k, degree_u, count_u, periodic_u, "u");
+  knots_u = std::move(k);
+}
+void Surface::set_knots_v(KnotVector k) {
+  check_match(k, degree_v, count_v, periodic_v, "v");
+  knots_v = std::move(k);
 }
 
 Point Surface::evaluate(double u, double v) const {
   std::array<double, kMaxDegree + 1> bu, bv;
-  const int fu = eval_basis(degree_u, count_u, periodic_u, u, bu.data());
-  const int fv = eval_basis(degree_v, count_v, periodic_v, v, bv.data());
+  const int fu = basis_u(*this, u, bu.data());
+  const int fv = basis_v(*this, v, bv.data());
   Point s = Point::Zero();
   for (int a = 0; a <= degree_u; ++a) {
     Point row = Point::Zero();
@@ -32,8 +58,8 @@ void Surface::derivatives(double u, double v, Point out[6]) const {
   constexpr int M = kMaxDegree + 1;
   std::array<double, 3 * M> du, dv;
   const int pu = degree_u, pv = degree_v;
-  const int fu = eval_basis_derivatives(pu, count_u, periodic_u, u, 2, du.data());
-  const int fv = eval_basis_derivatives(pv, count_v, periodic_v, v, 2, dv.data());
+  const int fu = basis_derivatives_u(*this, u, 2, du.data());
+  const int fv = basis_derivatives_v(*this, v, 2, dv.data());
   for (int k = 0; k < 6; ++k) out[k] = Point::Zero();
   for (int a = 0; a <= pu; ++a) {
     const int i = wrap_index(fu + a, count_u);
@@ -55,12 +81,10 @@ void Surface::derivatives(double u, double v, Point out[6]) const {
 }
 
 std::vector<double> Surface::full_knots_u() const {
-  return periodic_u ? periodic_uniform_knots(degree_u, count_u)
-                    : clamped_uniform_knots(degree_u, count_u);
+  return full_knots(knots_u, degree_u, count_u, periodic_u);
 }
 std::vector<double> Surface::full_knots_v() const {
-  return periodic_v ? periodic_uniform_knots(degree_v, count_v)
-                    : clamped_uniform_knots(degree_v, count_v);
+  return full_knots(knots_v, degree_v, count_v, periodic_v);
 }
 
 }  // namespace sfit

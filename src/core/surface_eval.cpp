@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "basis_upto.h"
+#include "basis_knots.h"
 #include "sfit/error.h"
 
 namespace sfit {
@@ -80,8 +80,8 @@ void check_partial(int du, int dv) {
 Point surface_partial(const Surface& s, double u, double v, int du, int dv) {
   check_partial(du, dv);
   std::array<double, 3 * M> bu, bv;
-  const int fu = eval_basis_upto(s.degree_u, s.count_u, s.periodic_u, u, du, bu.data());
-  const int fv = eval_basis_upto(s.degree_v, s.count_v, s.periodic_v, v, dv, bv.data());
+  const int fu = eval_basis_upto(s.knots_u, s.degree_u, s.count_u, s.periodic_u, u, du, bu.data());
+  const int fv = eval_basis_upto(s.knots_v, s.degree_v, s.count_v, s.periodic_v, v, dv, bv.data());
   return combine_one(s, fu, bu.data() + du * (s.degree_u + 1), fv,
                      bv.data() + dv * (s.degree_v + 1));
 }
@@ -98,8 +98,10 @@ Point surface_partial(const Surface& s, const DirectionBasis& u, std::size_t i,
 void surface_derivatives(const Surface& s, double u, double v, int order, Point* out) {
   check_order(order);
   std::array<double, 3 * M> du, dv;
-  const int fu = eval_basis_upto(s.degree_u, s.count_u, s.periodic_u, u, order, du.data());
-  const int fv = eval_basis_upto(s.degree_v, s.count_v, s.periodic_v, v, order, dv.data());
+  const int fu =
+      eval_basis_upto(s.knots_u, s.degree_u, s.count_u, s.periodic_u, u, order, du.data());
+  const int fv =
+      eval_basis_upto(s.knots_v, s.degree_v, s.count_v, s.periodic_v, v, order, dv.data());
   combine(s, order, fu, du.data(), fv, dv.data(), out);
 }
 
@@ -111,12 +113,13 @@ DirectionBasis direction_basis(const Surface& s, bool along_u, std::span<const d
   b.order = order;
   const int count = along_u ? s.count_u : s.count_v;
   const bool periodic = along_u ? s.periodic_u : s.periodic_v;
+  const KnotVector& knots = along_u ? s.knots_u : s.knots_v;
   const std::size_t stride = static_cast<std::size_t>(order + 1) * (b.degree + 1);
   b.first.resize(t.size());
   b.d.resize(t.size() * stride);
   std::array<double, 3 * M> d;
   for (std::size_t k = 0; k < t.size(); ++k) {
-    b.first[k] = eval_basis_upto(b.degree, count, periodic, t[k], order, d.data());
+    b.first[k] = eval_basis_upto(knots, b.degree, count, periodic, t[k], order, d.data());
     std::copy(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(stride),
               b.d.begin() + static_cast<std::ptrdiff_t>(k * stride));
   }

@@ -3,6 +3,7 @@
 
 #include <optional>
 
+#include "adaptive_knots.h"
 #include "fit_monitor.h"
 #include "surface_fitter.h"
 
@@ -33,6 +34,19 @@ bool parse_fit_method(std::string_view name, FitMethod& out) {
   return false;
 }
 
+std::string_view to_string(KnotRule k) {
+  return k == KnotRule::kAdaptive ? "adaptive" : "uniform";
+}
+
+bool parse_knot_rule(std::string_view name, KnotRule& out) {
+  for (KnotRule k : {KnotRule::kUniform, KnotRule::kAdaptive})
+    if (name == to_string(k)) {
+      out = k;
+      return true;
+    }
+  return false;
+}
+
 bool parse_fit_norm(std::string_view name, FitNorm& out) {
   for (FitNorm n : {FitNorm::kL2, FitNorm::kLinf, FitNorm::kAuto})
     if (name == to_string(n)) {
@@ -48,7 +62,9 @@ FitResult fit_surface(const Rows& rows, const FitOptions& o) {
   if (detail::FitMonitor::wanted(o) && !detail::current_monitor()) monitor.emplace(o);
   const detail::MonitorScope scope(monitor ? &*monitor : detail::current_monitor());
   detail::SurfaceFitter fitter(o);
-  return fitter.fit(rows);
+  FitResult r = fitter.fit(rows);
+  if (o.knots == KnotRule::kAdaptive) detail::adapt_knots(rows, o, r);
+  return r;
 }
 
 }  // namespace sfit

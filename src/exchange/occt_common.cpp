@@ -9,13 +9,27 @@
 #include <cctype>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 namespace sfit::exchange::detail {
 
 namespace {
 
-void knots(int degree, int count, bool periodic, TColStd_Array1OfReal& k,
+void knots(const KnotVector& kv, int degree, int count, bool periodic, TColStd_Array1OfReal& k,
            TColStd_Array1OfInteger& m) {
+  if (!kv.uniform()) {  // the distinct knots with their multiplicities, as they are
+    std::vector<double> values;
+    std::vector<int> mults;
+    kv.breaks(values, mults);
+    const int n = static_cast<int>(values.size());
+    k.Resize(1, n, false);
+    m.Resize(1, n, false);
+    for (int i = 0; i < n; ++i) {
+      k(i + 1) = values[static_cast<std::size_t>(i)];
+      m(i + 1) = mults[static_cast<std::size_t>(i)];
+    }
+    return;
+  }
   const int n = periodic ? count + 1 : count - degree + 1;
   k.Resize(1, n, false);
   m.Resize(1, n, false);
@@ -36,8 +50,8 @@ Handle(Geom_BSplineSurface) to_occt(const Surface& s) {
     }
   TColStd_Array1OfReal ku(1, 1), kv(1, 1);
   TColStd_Array1OfInteger mu(1, 1), mv(1, 1);
-  knots(s.degree_u, s.count_u, s.periodic_u, ku, mu);
-  knots(s.degree_v, s.count_v, s.periodic_v, kv, mv);
+  knots(s.knots_u, s.degree_u, s.count_u, s.periodic_u, ku, mu);
+  knots(s.knots_v, s.degree_v, s.count_v, s.periodic_v, kv, mv);
   return new Geom_BSplineSurface(poles, ku, kv, mu, mv, s.degree_u, s.degree_v, s.periodic_u,
                                  s.periodic_v);
 }

@@ -12,9 +12,10 @@
 
 namespace sfit::exchange::detail {
 
-/// The surface as OCCT sees it: same degrees, poles, knots 0, 1, ... (distinct values with
-/// multiplicities: degree + 1 at the ends of an open direction, 1 everywhere in a periodic
-/// one) and the periodic flags, so it evaluates to Surface::evaluate() at the same (u, v).
+/// The surface as OCCT sees it: same degrees, poles, knots (distinct values with
+/// multiplicities: uniform knots as 0, 1, ... with degree + 1 at the ends of an open direction
+/// and 1 everywhere in a periodic one; non-uniform knots as KnotVector::breaks() gives them)
+/// and the periodic flags, so it evaluates to Surface::evaluate() at the same (u, v).
 Handle(Geom_BSplineSurface) to_occt(const Surface& surface);
 
 /// Our unit names, OCCT's (write.step.unit, IGES global section) and the size in millimetres.

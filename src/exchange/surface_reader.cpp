@@ -37,29 +37,48 @@ using detail::unit_named;
   throw Error(code, msg, Place{.file = path});
 }
 
-// The distinct-point count of one direction, after checking its knots are uniform in sfit's
-// layout (degree + 1 at the ends of an open direction, 1 everywhere in a periodic one).
-int uniform_count(const std::string& path, const char* dir, int degree, bool periodic, int poles,
-                  const TColStd_Array1OfReal& knots, const TColStd_Array1OfInteger& mults) {
-  const int n = knots.Length();
-  const int expected = periodic ? poles + 1 : poles - degree + 1;
-  auto refuse = [&](const std::string& why) {
-    fail(ErrorCode::kInputData, path,
-         std::string("the surface's knots along ") + dir + " are " + why +
-             ": sfit surfaces have uniform knots (" + std::to_string(degree + 1) +
-             "-fold ends when open)");
-  };
-  if (n != expected || n < 2) refuse("not the uniform layout");
-  const int lo = knots.Lower();
-  for (int k = 0; k < n; ++k) {
-    const int m = mults(lo + k);
+// The knots of one direction: uniform when they are sfit's uniform layout up to an affine map
+// (degree + 1 at the ends of an open direction, 1 everywhere in a periodic one, equal steps),
+// otherwise the KnotVector of the knots as they are (shifted to begin at 0).
+KnotVector read_knots(const std::string& path, const char* dir, int degree, bool periodic,
+                      int poles, const TColStd_Array1OfReal& knots,
+                      const TColStd_Array1OfInteger& mults) {
+  const int n = knots.Length(), lo = knots.Lower();
+  bool uniform = n == (periodic ? poles + 1 : poles - degree + 1) && n >= 2;
+  for (int k = 0; k < n && uniform; ++k) {
     const bool end = !periodic && (k == 0 || k == n - 1);
-    if (m != (end ? degree + 1 : 1)) refuse("of multiplicity " + std::to_string(m));
+    uniform = mults(lo + k) == (end ? degree + 1 : 1);
   }
-  const double a = knots(lo), h = (knots(lo + n - 1) - a) / (n - 1);
-  for (int k = 0; k < n; ++k)
-    if (!(std::abs(knots(lo + k) - (a + k * h)) <= 1e-9 * std::abs(h) * n)) refuse("not uniform");
-  return poles;
+  if (uniform) {
+    const double a = knots(lo), h = (knots(lo + n - 1) - a) / (n - 1);
+    for (int k = 0; k < n && uniform; ++k)
+      uniform = std::abs(knots(lo + k) - (a + k * h)) <= 1e-9 * std::abs(h) * n;
+    if (uniform) return {};
+  }
+  std::vector<double> breaks;
+  std::vector<int> inner;
+  for (int k = 0; k < n; ++k) {
+    breaks.push_back(knots(lo + k) - knots(lo));
+    const int m = mults(lo + k);
+    const bool end = k == 0 || k == n - 1;
+    if (!periodic && end && m != degree + 1)
+      fail(ErrorCode::kInputData, path,
+           std::string("the surface's knots along ") + dir + " have end multiplicity " +
+               std::to_string(m) + ": sfit reads clamped ends (" + std::to_string(degree + 1) +
+               "-fold)");
+    if (periodic ? k < n - 1 : !end) inner.push_back(m);
+  }
+  try {
+    KnotVector kv = KnotVector::from_breaks(degree, periodic, breaks, inner);
+    if (kv.count() != poles)
+      fail(ErrorCode::kInputData, path,
+           std::string("the surface's knots along ") + dir + " do not match its poles");
+    return kv;
+  } catch (const Error& e) {
+    if (e.code() != ErrorCode::kInputData || e.place().file == path) throw;
+    fail(ErrorCode::kInputData, path,
+         std::string("the surface's knots along ") + dir + ": " + e.what());
+  }
 }
 
 Surface to_surface(const std::string& path, const Handle(Geom_BSplineSurface) & g) {
@@ -78,10 +97,12 @@ Surface to_surface(const std::string& path, const Handle(Geom_BSplineSurface) & 
   s.periodic_v = g->IsVPeriodic();
   if (s.degree_u < 1 || s.degree_u > 20 || s.degree_v < 1 || s.degree_v > 20)
     fail(ErrorCode::kInputData, path, "the surface's degrees are outside 1 ... 20");
-  s.count_u = uniform_count(path, "u", s.degree_u, s.periodic_u, g->NbUPoles(), g->UKnots(),
-                            g->UMultiplicities());
-  s.count_v = uniform_count(path, "v", s.degree_v, s.periodic_v, g->NbVPoles(), g->VKnots(),
-                            g->VMultiplicities());
+  s.count_u = g->NbUPoles();
+  s.count_v = g->NbVPoles();
+  s.set_knots_u(read_knots(path, "u", s.degree_u, s.periodic_u, s.count_u, g->UKnots(),
+                           g->UMultiplicities()));
+  s.set_knots_v(read_knots(path, "v", s.degree_v, s.periodic_v, s.count_v, g->VKnots(),
+                           g->VMultiplicities()));
   s.control.reserve(static_cast<std::size_t>(s.count_u) * s.count_v);
   for (int i = 1; i <= s.count_u; ++i)
     for (int j = 1; j <= s.count_v; ++j) {

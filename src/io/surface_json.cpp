@@ -6,7 +6,6 @@
 #include <sstream>
 
 #include "input_file.h"
-#include "knots.h"
 #include "sfit/error.h"
 #include "sfit/fit_limits.h"
 #include "sfit/io/atomic_file.h"
@@ -24,6 +23,7 @@ json point(const Point& p) {
 json surface_header_to_json(const Surface& s) {
   json j;
   j["type"] = "bspline_surface";
+  if (s.non_uniform()) j["version"] = kNonUniformVersion;  // uniform files stay version 1
   j["degree"] = {s.degree_u, s.degree_v};
   j["periodic"] = {s.periodic_u, s.periodic_v};
   j["knots_u"] = s.full_knots_u();
@@ -89,24 +89,25 @@ namespace {
   throw Error(ErrorCode::kInputData, "not an sfit surface: " + what, Place{.file = name});
 }
 
-int distinct_count(const json& j, const std::string& name, const char* key, int degree,
-                   bool periodic, std::size_t full) {
+// The direction's knots (validated) and its distinct control-point count.
+KnotVector read_knots(const json& j, const std::string& name, const char* key, int degree,
+                      bool periodic, std::size_t full, int& count) {
   const auto& k = j.at(key);
   if (!k.is_array() || k.size() != full + degree + 1)
     bad(name, std::string(key) + " must have " + std::to_string(full + degree + 1) + " entries");
-  const int n = static_cast<int>(full) - (periodic ? degree : 0);
-  if (n < degree + 1) bad(name, std::string("too few control points along ") + key);
-  const auto expect =
-      periodic ? periodic_uniform_knots(degree, n) : clamped_uniform_knots(degree, n);
-  // sfit writes uniform knots; accept any affine image of them (a shifted or scaled domain
-  // would need a reparametrisation sfit does not do, so refuse it clearly).
-  for (std::size_t i = 0; i < expect.size(); ++i) {
-    const double v = k[i].get<double>();
-    if (!std::isfinite(v) || std::abs(v - expect[i]) > 1e-9 * (1 + std::abs(expect[i])))
-      bad(name,
-          std::string(key) + " are not sfit's uniform knots (entry " + std::to_string(i) + ")");
+  count = static_cast<int>(full) - (periodic ? degree : 0);
+  if (count < degree + 1) bad(name, std::string("too few control points along ") + key);
+  std::vector<double> values(k.size());
+  for (std::size_t i = 0; i < k.size(); ++i) {
+    if (!k[i].is_number())
+      bad(name, std::string(key) + " entry " + std::to_string(i) + " is not a number");
+    values[i] = k[i].get<double>();
   }
-  return n;
+  try {
+    return KnotVector::from_full(degree, periodic, std::move(values), key);
+  } catch (const Error& e) {
+    bad(name, e.what());
+  }
 }
 
 }  // namespace
@@ -132,8 +133,17 @@ Surface surface_from_json(const json& j, const std::string& name) {
     if (!cps.is_array() || cps.empty() || !cps[0].is_array() || cps[0].empty())
       bad(name, "control_points must be a non-empty nu x nv array");
     const std::size_t fu = cps.size(), fv = cps[0].size();
-    s.count_u = distinct_count(j, name, "knots_u", s.degree_u, s.periodic_u, fu);
-    s.count_v = distinct_count(j, name, "knots_v", s.degree_v, s.periodic_v, fv);
+    if (j.contains("version")) {
+      const json& v = j.at("version");
+      if (!v.is_number_integer() || v.get<long long>() < 1 ||
+          v.get<long long>() > kNonUniformVersion)
+        bad(name, "contract version must be 1 ... " + std::to_string(kNonUniformVersion) +
+                      " (a newer sfit wrote it?)");
+    }
+    KnotVector ku = read_knots(j, name, "knots_u", s.degree_u, s.periodic_u, fu, s.count_u);
+    KnotVector kv = read_knots(j, name, "knots_v", s.degree_v, s.periodic_v, fv, s.count_v);
+    s.set_knots_u(std::move(ku));
+    s.set_knots_v(std::move(kv));
     s.control.resize(static_cast<std::size_t>(s.count_u) * s.count_v);
     for (std::size_t i = 0; i < fu; ++i) {
       if (!cps[i].is_array() || cps[i].size() != fv)

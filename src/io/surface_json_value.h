@@ -23,7 +23,8 @@ nlohmann::json report_to_json(const FitReport& report);
 
 /// Reads a surface in the contract's form; `name` is used in messages.
 /// Throws Error(kInputSyntax) for malformed JSON and Error(kInputData) for a surface that
-/// breaks the contract (knot vector lengths, non-uniform knots sfit cannot represent, a
+/// breaks the contract (knot vector lengths, knots that decrease, repeat more than the degree
+/// or (open) lack degree + 1 equal end knots, a periodic vector whose spacing does not repeat, a
 /// periodic direction whose wrap copies differ, non-finite numbers).
 Surface surface_from_json(const nlohmann::json& j, const std::string& name);
 

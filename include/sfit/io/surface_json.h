@@ -9,6 +9,10 @@
 
 namespace sfit::io {
 
+/// The contract version a file with non-uniform knots carries under "version" (a surface on
+/// uniform knots is written as version 1, without the key, byte for byte as before).
+inline constexpr int kNonUniformVersion = 2;
+
 /// The surface as JSON text in the contract's form (full knot vectors, full control arrays, a
 /// periodic direction with its wrap copies, `periodic` flags; doubles round-trip exactly),
 /// with the fit report under "report" when `report` is given. `indent` < 0: one line.
@@ -20,12 +24,12 @@ std::string report_to_json_text(const FitReport& report, int indent = 2);
 
 /// Reads a surface from JSON text in the contract's form; `name` is used in messages.
 /// Throws Error(kInputSyntax) for malformed JSON and Error(kInputData) for a surface that
-/// breaks the contract (knot vector lengths, non-uniform knots sfit cannot represent, a
+/// breaks the contract (knot vector lengths, knots that decrease, repeat more than the degree
+/// or (open) lack degree + 1 equal end knots, a periodic vector whose spacing does not repeat, a
 /// periodic direction whose wrap copies differ, non-finite numbers).
 Surface surface_from_json_text(std::string_view text, const std::string& name);
 
-/// Reads a surface file written by write_surface_json (or any tool keeping the contract with
-/// sfit's uniform knots).
+/// Reads a surface file written by write_surface_json (or any tool keeping the contract).
 Surface read_surface_json(const std::string& path);
 
 /// The text write_surface_json() writes (for standard output).

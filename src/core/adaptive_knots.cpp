@@ -1,0 +1,289 @@
+#include "adaptive_knots.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "banded_lsq.h"
+#include "basis_knots.h"
+#include "deviation.h"
+#include "sfit/fold_check.h"
+
+namespace sfit::detail {
+namespace {
+
+constexpr double kRowShare = 0.7;  // the share of T each row's own fit must hold (step 1)
+constexpr double kRidge = 1e-4;    // weight of the second-difference equations
+constexpr int kMaxRounds = 60;     // insertion rounds per step
+constexpr int kMaxSolves = 48;     // tensor solves of steps 2 and 3 together
+constexpr double kMaxWork = 3e9;   // flops of all tensor solves together (a few seconds at most)
+
+// An open knot vector as breakpoints (0 ... end) and interior multiplicities.
+struct Breaks {
+  std::vector<double> b;
+  std::vector<int> m;  // one per interior breakpoint
+  int degree = 3;
+  int count() const {
+    int c = degree + 1;
+    for (int x : m) c += x;
+    return c;
+  }
+  KnotVector knots() const { return KnotVector::from_breaks(degree, false, b, m); }
+  std::size_t span_of(double t) const {
+    const auto it = std::upper_bound(b.begin() + 1, b.end() - 1, t);
+    return static_cast<std::size_t>(it - b.begin()) - 1;
+  }
+  // Inserts t (a new breakpoint, or one more copy of an interior one up to the degree).
+  bool insert(double t) {
+    const double eps = 1e-9 * b.back();
+    if (!(t > eps && t < b.back() - eps)) return false;
+    const std::size_t s = span_of(t);
+    for (std::size_t k : {s, s + 1})
+      if (std::abs(b[k] - t) <= eps) {
+        if (k == 0 || k + 1 == b.size() || m[k - 1] >= degree) return false;
+        ++m[k - 1];
+        return true;
+      }
+    b.insert(b.begin() + static_cast<std::ptrdiff_t>(s) + 1, t);
+    m.insert(m.begin() + static_cast<std::ptrdiff_t>(s), 1);
+    return true;
+  }
+  void remove(std::size_t k) {  // one copy of interior breakpoint k
+    if (--m[k - 1] == 0) {
+      b.erase(b.begin() + static_cast<std::ptrdiff_t>(k));
+      m.erase(m.begin() + static_cast<std::ptrdiff_t>(k) - 1);
+    }
+  }
+};
+
+Breaks uniform_breaks(int degree, int spans, double end) {
+  Breaks k;
+  k.degree = degree;
+  for (int i = 0; i <= spans; ++i) k.b.push_back(end * i / spans);
+  k.b.back() = end;
+  k.m.assign(static_cast<std::size_t>(spans - 1), 1);
+  return k;
+}
+
+// Adds sum coef[i] x[first + i] = rhs (i < len) to `ls` of n unknowns and width w.
+void add_equation(BandedLeastSquares& ls, int n, int w, std::vector<double>& buf, int first,
+                  const double* coef, int len, const Point& rhs, double weight) {
+  const int start = std::min(first, std::max(0, n - w));
+  buf.assign(static_cast<std::size_t>(w), 0.0);
+  for (int i = 0; i < len; ++i)
+    if (coef[i] != 0) buf[static_cast<std::size_t>(first - start + i)] = coef[i];
+  ls.add(start, buf.data(), rhs, weight);
+}
+
+double ratio(const Point& d, const Point& tol) {
+  return std::max(
+      {std::abs(d.x()) / tol.x(), std::abs(d.y()) / tol.y(), std::abs(d.z()) / tol.z()});
+}
+
+// Each row alone on the u knots: the worst ratio and its u per span.
+void row_residuals(const Rows& rows, const std::vector<double>& u, const Point& centre,
+                   const Breaks& ku, const Point& tol, std::vector<double>& worst,
+                   std::vector<double>& at) {
+  const KnotVector k = ku.knots();
+  const int p = ku.degree, n = ku.count();
+  worst.assign(ku.b.size() - 1, 0.0);
+  at.assign(ku.b.size() - 1, 0.0);
+  std::vector<double> N(static_cast<std::size_t>(p + 1)), buf;
+  std::vector<Point> c;
+  const double second[] = {1, -2, 1}, first[] = {1, -1};
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto row = rows[j];
+    const double* uj = u.data() + rows.offsets()[j];
+    BandedLeastSquares ls(n, p + 1, false);
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      const int f = eval_basis(k, p, n, false, uj[i], N.data());
+      ls.add(f, N.data(), row[i] - centre);
+    }
+    for (int i = 0; i + (p >= 2 ? 2 : 1) < n; ++i)
+      add_equation(ls, n, p + 1, buf, i, p >= 2 ? second : first, p >= 2 ? 3 : 2, Point::Zero(),
+                   kRidge);
+    if (!ls.solve(c)) continue;
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      const int f = eval_basis(k, p, n, false, uj[i], N.data());
+      Point s = Point::Zero();
+      for (int a = 0; a <= p; ++a) s += N[a] * c[f + a];
+      const double r = ratio(s + centre - row[i], tol);
+      const std::size_t sp = ku.span_of(uj[i]);
+      if (r > worst[sp]) {
+        worst[sp] = r;
+        at[sp] = uj[i];
+      }
+    }
+  }
+}
+
+// The tensor-product least squares on (ku, kv) into `s` (control points in original
+// coordinates); false where the solve failed.
+bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
+                  const Point& centre, const Breaks& ku, const Breaks& kv, Surface& s) {
+  const KnotVector KU = ku.knots(), KV = kv.knots();
+  const int p = ku.degree, q = kv.degree, nu = ku.count(), nv = kv.count();
+  const int n = nu * nv, w = std::min(n, p * nv + q + 1);
+  BandedLeastSquares ls(n, w, false);
+  std::vector<double> Nu(static_cast<std::size_t>(p + 1)), Nv(static_cast<std::size_t>(q + 1));
+  std::vector<double> coef(static_cast<std::size_t>(p * nv + q + 1)), buf;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const int fv = eval_basis(KV, q, nv, false, v[j], Nv.data());
+    const auto row = rows[j];
+    const double* uj = u.data() + rows.offsets()[j];
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      const int fu = eval_basis(KU, p, nu, false, uj[i], Nu.data());
+      std::fill(coef.begin(), coef.end(), 0.0);
+      for (int a = 0; a <= p; ++a)
+        for (int b = 0; b <= q; ++b) coef[static_cast<std::size_t>(a * nv + b)] = Nu[a] * Nv[b];
+      add_equation(ls, n, w, buf, fu * nv + fv, coef.data(), p * nv + q + 1, row[i] - centre, 1);
+    }
+  }
+  // Second differences along u (stride nv) and along v (stride 1); first differences at
+  // degree 1.
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      std::fill(coef.begin(), coef.end(), 0.0);
+      const int du = p >= 2 ? 2 : 1, dv = q >= 2 ? 2 : 1;
+      if (i + du < nu) {
+        coef[0] = 1;
+        coef[static_cast<std::size_t>(nv)] = du == 2 ? -2 : -1;
+        if (du == 2) coef[static_cast<std::size_t>(2 * nv)] = 1;
+        add_equation(ls, n, w, buf, i * nv + j, coef.data(), du * nv + 1, Point::Zero(), kRidge);
+        std::fill(coef.begin(), coef.end(), 0.0);
+      }
+      if (j + dv < nv) {
+        coef[0] = 1;
+        coef[1] = dv == 2 ? -2 : -1;
+        if (dv == 2) coef[2] = 1;
+        add_equation(ls, n, w, buf, i * nv + j, coef.data(), dv + 1, Point::Zero(), kRidge);
+      }
+    }
+  std::vector<Point> x;
+  if (!ls.solve(x)) return false;
+  s.count_u = nu;
+  s.count_v = nv;
+  s.knots_u = KnotVector();
+  s.knots_v = KnotVector();
+  s.set_knots_u(KU);
+  s.set_knots_v(KV);
+  s.control.resize(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    if (!x[k].allFinite()) return false;
+    s.control[k] = x[k] + centre;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool adapt_knots(const Rows& rows, const FitOptions& o, FitResult& r) {
+  const Surface& uni = r.surface;
+  const Point tol = r.report.tolerance;
+  if (uni.periodic_u || uni.periodic_v || !r.v_points.empty() || !r.report.within_tolerance ||
+      !(tol.minCoeff() > 0) || uni.count_u * uni.count_v <= 4 || rows.size() < 2)
+    return false;
+  const int p = uni.degree_u, q = uni.degree_v;
+  const double eu = uni.u_end(), ev = uni.v_end();
+  const std::size_t budget = static_cast<std::size_t>(uni.count_u) * uni.count_v;
+  Point centre = Point::Zero();
+  for (const Point& x : rows.points()) centre += x;
+  centre /= static_cast<double>(rows.total_points());
+
+  // 1. u knots, common to every row.
+  Breaks ku = uniform_breaks(p, std::max(1, (uni.count_u - p) / 8), eu);
+  std::vector<double> worst, at;
+  for (int round = 0; round < kMaxRounds; ++round) {
+    row_residuals(rows, r.u, centre, ku, tol, worst, at);
+    Breaks next = ku;
+    bool any = false;
+    for (std::size_t s = worst.size(); s-- > 0;)
+      if (worst[s] > kRowShare) {
+        const double mid = 0.5 * (ku.b[s] + ku.b[s + 1]);
+        any |= next.insert(at[s]) || next.insert(mid);
+      }
+    if (!any) break;
+    ku = next;
+    if (ku.count() >= uni.count_u) return false;  // no fewer along u than uniform
+  }
+  // 2. v knots, then u where a v span holds a single row.
+  Breaks kv = uniform_breaks(q, std::max(1, (uni.count_v - q) / 4), ev);
+  Surface s = uni;
+  bool held = false;
+  int solves = 0;
+  double work = 0;
+  // Givens rotations of every point's and every smoothing equation into a band of the
+  // width of one solve; false once the budget is spent.
+  auto afford = [&](const Breaks& a, const Breaks& b) {
+    const double w = p * b.count() + q + 1;
+    work += (double(rows.total_points()) + 2.0 * a.count() * b.count()) * w * w;
+    return ++solves <= kMaxSolves && work <= kMaxWork;
+  };
+  for (int round = 0; round < kMaxRounds && !held; ++round) {
+    if (!afford(ku, kv) || static_cast<std::size_t>(ku.count()) * kv.count() >= budget)
+      return false;
+    if (!solve_tensor(rows, r.u, r.v, centre, ku, kv, s)) return false;
+    std::vector<double> wu(ku.b.size() - 1, 0.0), au(wu.size(), 0.0);
+    std::vector<double> wv(kv.b.size() - 1, 0.0);
+    std::vector<int> rows_in(wv.size(), 0);
+    for (double t : r.v) ++rows_in[kv.span_of(t)];
+    held = true;
+    for (std::size_t j = 0; j < rows.size(); ++j) {
+      const auto row = rows[j];
+      const std::size_t sv = kv.span_of(r.v[j]);
+      for (std::size_t i = 0; i < row.size(); ++i) {
+        const double t = r.u[rows.offsets()[j] + i];
+        const double x = ratio(s.evaluate(t, r.v[j]) - row[i], tol);
+        if (x <= 1) continue;
+        held = false;
+        if (rows_in[sv] >= 2) {
+          wv[sv] = std::max(wv[sv], x);
+        } else {
+          const std::size_t su = ku.span_of(t);
+          if (x > wu[su]) {
+            wu[su] = x;
+            au[su] = t;
+          }
+        }
+      }
+    }
+    if (held) break;
+    bool any = false;
+    for (std::size_t k = wv.size(); k-- > 0;)
+      if (wv[k] > 1) any |= kv.insert(0.5 * (kv.b[k] + kv.b[k + 1]));
+    for (std::size_t k = wu.size(); k-- > 0;)
+      if (wu[k] > 1) any |= ku.insert(au[k]) || ku.insert(0.5 * (ku.b[k] + ku.b[k + 1]));
+    if (!any) return false;
+  }
+  if (!held) return false;
+  // 3. Removal: a knot goes where the surface without it still holds T everywhere.
+  auto holds = [&](const Breaks& a, const Breaks& b, Surface& out) {
+    if (!solve_tensor(rows, r.u, r.v, centre, a, b, out)) return false;
+    return check_deviation(out, rows, r.u, r.v, tol, r.report.roundoff, o.threads).within;
+  };
+  for (Breaks* k : {&ku, &kv})
+    for (std::size_t i = k->b.size() - 1; i-- > 1;) {
+      Breaks fewer = *k;
+      fewer.remove(i);
+      if (!afford(k == &ku ? fewer : ku, k == &kv ? fewer : kv)) break;
+      Surface t = s;
+      if (holds(k == &ku ? fewer : ku, k == &kv ? fewer : kv, t)) {
+        *k = fewer;
+        s = std::move(t);
+      }
+    }
+  // The final check, the fold and the count decide.
+  const DeviationCheck c = check_deviation(s, rows, r.u, r.v, tol, r.report.roundoff, o.threads);
+  if (!c.within || static_cast<std::size_t>(s.count_u) * s.count_v >= budget) return false;
+  if (fold_measure(s, r.v) > kFoldRelative * bounding_box(rows).diagonal()) return false;
+  r.surface = std::move(s);
+  r.report.count_u = r.surface.count_u;
+  r.report.count_v = r.surface.count_v;
+  r.report.max_deviation = c.max_deviation;
+  r.report.worst_row = c.worst_row;
+  r.report.worst_index = c.worst_index;
+  r.report.worst_deviation = c.worst_deviation;
+  r.report.fold = fold_measure(r.surface, r.v);
+  return true;
+}
+
+}  // namespace sfit::detail
