@@ -21,6 +21,7 @@
 #include "minimax.h"
 #include "pair_search.h"
 #include "parallel.h"
+#include "rows_at_t.h"
 #include "search_frame.h"
 #include "sfit/curve_fit.h"
 #include "sfit/error.h"
@@ -347,42 +348,16 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
         best.reset();
     }
   }
-  // The two stages with all of T for the rows and columns that interpolate them
-  // (SurfaceFitter::rows_take_all()), where no pair beat the two stages and theirs has more
-  // control points than there are points: data that jumps from row to row. (Not where a pair
-  // of the search is kept: the editor's quick refits hold a searched pair's counts, which a
-  // least-squares fit at this surface's counts need not.) Its count is
-  // estimated as the two stages' nu scaled by the sampled rows' counts at T over those at T/2
-  // (count_floor.h), times one per row across: a second two-stage run is made only where that
-  // leaves a tenth to gain (noise near T leaves a few per cent, at twice the time). Kept only
-  // where strictly smaller, within T and not folding.
+  // The two stages with all of T for the rows and columns that interpolate them (rows_at_t.h),
+  // where no pair beat the two stages and theirs has more control points than there are
+  // points: data that jumps from row to row. (Not where a pair of the search is kept: the
+  // editor's quick refits hold a searched pair's counts, which a least-squares fit at this
+  // surface's counts need not.)
   std::optional<FitResult> all_to_rows;
   if (!best && base && base->report.within_tolerance && !interpolate && !forced &&
-      static_cast<std::size_t>(base->surface.count_u) * base->surface.count_v >
-          rows.total_points()) {
-    const long now_best = static_cast<long>(base->surface.count_u) * base->surface.count_v;
-    FitOptions half = os;
-    half.tolerance *= 0.5;
-    const int at_t = floor_of(o1.parametrization).nu;
-    const int at_half = count_floor(fr.centred, half, o1.parametrization, fr.roundoff).nu;
-    const double estimate = static_cast<double>(base->surface.count_u) * at_t /
-                            std::max(at_half, 1) * static_cast<double>(rows.size());
-    if (10 * estimate < 9 * static_cast<double>(now_best)) {
-      progress_phase("rows take T", 1);
-      SurfaceFitter f(o1);
-      f.rows_take_all(true);
-      try {
-        FitResult a = f.fit_aligned(rows, seam_offsets);
-        const long n = static_cast<long>(a.surface.count_u) * a.surface.count_v;
-        if (a.report.within_tolerance && n < now_best && !(o.fold_guard && folds(a, fr.box))) {
-          all_to_rows = std::move(a);
-        }
-      } catch (const Error& e) {  // a re-representation that cannot hold T: none
-        if (e.code() != ErrorCode::kToleranceNotMet) throw;
-      }
-      progress_advance(1);
-    }
-  }
+      static_cast<std::size_t>(base->surface.count_u) * base->surface.count_v > rows.total_points())
+    all_to_rows = fit_rows_at_t(rows, fr.centred, o1, os, *base, floor_of(o1.parametrization),
+                                fr.roundoff, fr.box.diagonal(), seam_offsets);
   if (!best) {
     FitResult& b = all_to_rows ? *all_to_rows : *base;
     b.report.method = FitMethod::kSfit01;
