@@ -103,7 +103,8 @@ test("bad requests get 400 with a JSON error naming the problem; the state stays
   }
   for (const [o, re] of [[{ degree: [0, 3] }, /degree/], [{ tolerance: -1 }, /tolerance/],
     [{ tolerance: [1, 2] }, /tolerance/], [{ closed: "u" }, /closed/], [{ parameters: "magic" }, /parameters/],
-    [{ search: "slow" }, /search/], [{ knots: 3 }, /knots: unknown/]]) {
+    [{ search: "slow" }, /search/], [{ knots: 3 }, /knots: must be one of uniform, adaptive/],
+    [{ colour: "red" }, /colour: unknown/]]) {
     const r = await api.post("/api/options", o);
     assert.equal(r.status, 400, JSON.stringify(o));
     assert.match(r.json.error, re, JSON.stringify(o));
@@ -187,6 +188,17 @@ test("the option table: the library's, and /api/options checks through it", asyn
   assertWithinT(ok.json);
   const back = await api.post("/api/undo", {});
   assert.deepEqual(back.json.options, initial.options);
+  // The knot rule too: adaptive knots are asked for and reported, a wrong name is refused.
+  assert.deepEqual(spec("knots").choices, ["uniform", "adaptive"]);
+  assert.equal(initial.options.knots, "uniform");
+  const knots = await api.post("/api/options", { knots: "adaptive" });
+  assert.equal(knots.status, 200, knots.text);
+  assert.equal(knots.json.options.knots, "adaptive");
+  assertWithinT(knots.json);
+  const wrong = await api.post("/api/options", { knots: "random" });
+  assert.equal(wrong.status, 400);
+  assert.match(wrong.json.error, /'random' is not one of uniform, adaptive/);
+  await api.post("/api/undo", {});
 });
 
 test("a drag is one undo step; its quick refits are not final; stale drag steps are skipped", async () => {

@@ -132,6 +132,7 @@ json options_json(const FitOptions& o) {
               {"seam", std::string(to_string(o.seam))},
               {"orient", std::string(to_string(o.orient))},
               {"rerepresent", std::string(to_string(o.rerepresentation))},
+              {"knots", std::string(to_string(o.knots))},
               {"fold_guard", o.fold_guard}};
 }
 
@@ -162,7 +163,7 @@ FitOptions options_from_json(const json& r, const FitOptions& current) {
   // edit session can change, with tolerance as [Tx, Ty, Tz] or T, degree as [p, q] and closed
   // as [u, v]; every check is the table's (set_fit_option).
   check_keys(r, {"tolerance", "degree", "closed", "search", "parameters", "method", "norm", "seam",
-                 "orient", "rerepresent", "fold_guard", "phase"});
+                 "orient", "rerepresent", "knots", "fold_guard", "phase"});
   FitSettings st;
   st.options = current;
   if (r.contains("tolerance")) {
@@ -184,8 +185,8 @@ FitOptions options_from_json(const json& r, const FitOptions& current) {
     st.options.closed_u = c[0].get<bool>();
     st.options.closed_v = c[1].get<bool>();
   }
-  for (const char* name :
-       {"search", "parameters", "method", "norm", "seam", "orient", "rerepresent", "fold_guard"})
+  for (const char* name : {"search", "parameters", "method", "norm", "seam", "orient",
+                           "rerepresent", "knots", "fold_guard"})
     if (r.contains(name))
       set_fit_option(st, name, value_of(*find_option(name), r[name], name), name);
   // "known" is the hold's own setting (src/server/hold.cpp), never a request's.
