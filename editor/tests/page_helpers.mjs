@@ -63,6 +63,10 @@ export function pageHelpers(ctx) {
   }
   async function clickPoint(row, index, p = ctx().page) {
     await deselect(p);
+    // As a user clicks what is shown: the page idle (no answer pending that redraws it) and
+    // the frame after the last change of view or mode drawn.
+    await idle(p);
+    await p.evaluate(() => window.sfitEditor.nextFrame());
     const s = await p.evaluate((r, i) => window.sfitEditor.screenOf(r, i), row, index);
     await p.mouse.click(s.x, s.y);
     await p.waitForFunction((r, i) => { const s = window.sfitEditor.selected(); return s && s.row === r && s.index === i; },
