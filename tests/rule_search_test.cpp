@@ -42,8 +42,9 @@ void expect_fewest(const Rows& rows, const Point& tol, const char* what) {
                 std::string(to_string(rule)).c_str(), f.surface.count_u, f.surface.count_v,
                 d.surface.count_u, d.surface.count_v,
                 std::string(to_string(d.report.parametrization)).c_str());
-    if (f.report.within_tolerance)
+    if (f.report.within_tolerance) {
       EXPECT_LE(size_of(d), size_of(f)) << what << ": " << to_string(rule);
+    }
   }
 }
 

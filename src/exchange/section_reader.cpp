@@ -111,7 +111,7 @@ bool decode(const std::string& b, const std::string& path, SectionsFile& out) {
     const auto n = c.get<std::uint64_t>();
     if (!c.ok || n > (b.size() - c.at) / sizeof(Point)) return false;
     pts.resize(n);
-    std::memcpy(pts.data(), b.data() + c.at, n * sizeof(Point));
+    std::memcpy(static_cast<void*>(pts.data()), b.data() + c.at, n * sizeof(Point));
     c.at += n * sizeof(Point);
     out.rows.add_row(pts);
   }

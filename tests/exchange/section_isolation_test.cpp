@@ -99,10 +99,11 @@ TEST(SectionMutations, OneTokenEditsAreCleanErrors) {
     std::string error;
     const int code = fit_expecting_a_clean_answer(dir + "/" + name, &error);
     // On OpenCASCADE 7.6 each of these crashes the reader: the child's crash is exit 3.
-    if (code == 3)
+    if (code == 3) {
       EXPECT_EQ(error, "sfit: error: " + dir + "/" + name +
                            ": cannot read the file: OpenCASCADE crashed on it (signal 11, "
                            "Segmentation fault)");
+    }
     std::printf("[ measure  ] %s: exit %d: %s\n", name.c_str(), code, error.c_str());
   }
 }

@@ -19,7 +19,9 @@ TEST(Formats, EveryFormatIsWellFormedAndEveryExtensionUnique) {
     EXPECT_FALSE(f.description.empty()) << f.name;
     EXPECT_FALSE(f.extensions.empty()) << f.name;
     EXPECT_TRUE(f.reads || f.writes) << f.name;
-    if (f.part == io::FormatPart::kCore) EXPECT_TRUE(f.available) << f.name;
+    if (f.part == io::FormatPart::kCore) {
+      EXPECT_TRUE(f.available) << f.name;
+    }
     for (std::string_view e : f.extensions) {
       EXPECT_TRUE(seen.insert(std::string(e)).second) << "extension ." << e << " twice";
       EXPECT_EQ(io::find_format(e), &f);
