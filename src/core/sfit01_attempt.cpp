@@ -30,7 +30,7 @@ void SurfaceFitter::copy_centred(const Rows& rows) {
   });
 }
 
-SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound, const Point& column_bound,
+SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
                                                const std::vector<char>* changed) {
   Attempt at;
   const Rows& rows = centred_;
@@ -98,7 +98,9 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound, const Point& 
   const int nu = rs.common;
 
   // Transverse stage: column i holds control point i of every row curve (docs/method.md 5).
-  // The fold guard may set its own rule across the rows (across_).
+  // The fold guard may set its own rule across the rows (across_). Its budget: the rows', or
+  // with rows_take_all_ the half of the round-off allowance the rows left (interpolation).
+  const Point column_bound = rows_take_all_ ? Point::Constant(0.5 * roundoff_) : bound;
   Columns columns =
       fit_columns(rows, rs.curves, nu, across_.value_or(rule_), o_, column_bound, threads_);
   const std::vector<CurveFit>& column_fits = columns.fits;

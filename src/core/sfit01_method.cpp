@@ -198,19 +198,18 @@ FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
   for (double shrink = 1.0;; shrink *= 0.5) {
     // Stage budget: T/2 with a relative margin so T/2 + T/2 stays <= T after rounding;
     // at T = 0 the round-off allowance.
-    // With rows_take_all_ the rows get T less half the allowance, the columns that half.
-    Point bound, column_bound;
+    // With rows_take_all_ the rows get T less half the allowance, the columns that half
+    // (fit_once()).
+    Point bound;
     for (int a = 0; a < 3; ++a) {
       const double t = o_.tolerance[a] * (1 - 1e-9) * shrink;
       bound[a] = o_.tolerance[a] > 0
                      ? std::max(rows_take_all_ ? t - 0.5 * roundoff_ : 0.5 * t, 0.5 * roundoff_)
                      : 0.5 * roundoff_;
-      column_bound[a] = rows_take_all_ || o_.tolerance[a] <= 0 ? 0.5 * roundoff_ : bound[a];
     }
-    at = fit_once(bound, column_bound, nullptr);
+    at = fit_once(bound, nullptr);
     if (tightenings == 0) {
       bound_ = bound;
-      column_bound_ = column_bound;
       valid_ = true;
     } else {
       valid_ = false;  // the kept state is not the first attempt's
@@ -248,7 +247,7 @@ FitResult SurfaceFitter::update_centred(const Rows& rows, const std::vector<std:
   copy_centred(rows);
   Attempt at;
   try {
-    at = fit_once(bound_, column_bound_, &mark);
+    at = fit_once(bound_, &mark);
   } catch (const Error& e) {
     if (e.code() != ErrorCode::kToleranceNotMet) throw;
     return fit_centred(

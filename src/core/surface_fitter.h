@@ -60,8 +60,9 @@ class SurfaceFitter {
   FitResult fit_rule_unguarded(const Rows& rows, Parametrization requested);  // no fold guard
   bool folds(const FitResult& r) const;
   FitResult fit_with_rule(const Rows& rows);
-  // `bound`: the row stage's budget; `column_bound`: the transverse stage's.
-  Attempt fit_once(const Point& bound, const Point& column_bound, const std::vector<char>* changed);
+  // `bound`: the row stage's budget; the transverse stage's is the same, or with
+  // rows_take_all_ the round-off allowance's half.
+  Attempt fit_once(const Point& bound, const std::vector<char>* changed);
   FitResult finish(Attempt& at, int tightenings, const struct DeviationCheck& check,
                    double seconds_start) const;
   void centre(const Rows& rows);
@@ -77,7 +78,6 @@ class SurfaceFitter {
   // State of the first (untightened) attempt of the last fit, reused by update().
   bool valid_ = false;
   Point bound_ = Point::Zero();
-  Point column_bound_ = Point::Zero();
   bool rows_take_all_ = false;            // rows_take_all()
   std::vector<CurveFit> row_fits_;        // the count searches' results (hints chain from them)
   std::vector<CurveFit> row_final_fits_;  // after exact_maximum(): what was re-represented
