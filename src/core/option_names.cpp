@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "parse_name.h"
 #include "sfit/error.h"
 
 namespace sfit {
@@ -20,12 +21,8 @@ std::string_view to_string(CountSearch search) {
 }
 
 bool parse_count_search(std::string_view name, CountSearch& out) {
-  for (CountSearch s : {CountSearch::kFast, CountSearch::kLinear, CountSearch::kKnown})
-    if (name == to_string(s)) {
-      out = s;
-      return true;
-    }
-  return false;
+  return detail::parse_name(name, {CountSearch::kFast, CountSearch::kLinear, CountSearch::kKnown},
+                            out);
 }
 
 bool parse_closed(std::string_view name, bool& closed_u, bool& closed_v) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "knots.h"
+#include "parse_name.h"
 
 namespace sfit {
 namespace {
@@ -39,15 +40,12 @@ std::string_view to_string(Parametrization p) {
 }
 
 bool parse_parametrization(std::string_view name, Parametrization& out) {
-  for (Parametrization p :
-       {Parametrization::kPaper, Parametrization::kUniform, Parametrization::kChord,
-        Parametrization::kCentripetal, Parametrization::kGeometric, Parametrization::kFewest,
-        Parametrization::kAuto})
-    if (name == to_string(p)) {
-      out = p;
-      return true;
-    }
-  return false;
+  return detail::parse_name(
+      name,
+      {Parametrization::kPaper, Parametrization::kUniform, Parametrization::kChord,
+       Parametrization::kCentripetal, Parametrization::kGeometric, Parametrization::kFewest,
+       Parametrization::kAuto},
+      out);
 }
 
 std::vector<double> normalized_positions(std::span<const Point> points, Parametrization rule,

@@ -5,6 +5,7 @@
 
 #include "adaptive_knots.h"
 #include "fit_monitor.h"
+#include "parse_name.h"
 #include "surface_fitter.h"
 
 namespace sfit {
@@ -26,12 +27,7 @@ std::string_view to_string(FitNorm n) {
 }
 
 bool parse_fit_method(std::string_view name, FitMethod& out) {
-  for (FitMethod m : {FitMethod::kSurface, FitMethod::kSfit01})
-    if (name == to_string(m)) {
-      out = m;
-      return true;
-    }
-  return false;
+  return detail::parse_name(name, {FitMethod::kSurface, FitMethod::kSfit01}, out);
 }
 
 std::string_view to_string(KnotRule k) {
@@ -39,21 +35,11 @@ std::string_view to_string(KnotRule k) {
 }
 
 bool parse_knot_rule(std::string_view name, KnotRule& out) {
-  for (KnotRule k : {KnotRule::kUniform, KnotRule::kAdaptive})
-    if (name == to_string(k)) {
-      out = k;
-      return true;
-    }
-  return false;
+  return detail::parse_name(name, {KnotRule::kUniform, KnotRule::kAdaptive}, out);
 }
 
 bool parse_fit_norm(std::string_view name, FitNorm& out) {
-  for (FitNorm n : {FitNorm::kL2, FitNorm::kLinf, FitNorm::kAuto})
-    if (name == to_string(n)) {
-      out = n;
-      return true;
-    }
-  return false;
+  return detail::parse_name(name, {FitNorm::kL2, FitNorm::kLinf, FitNorm::kAuto}, out);
 }
 
 FitResult fit_surface(const Rows& rows, const FitOptions& o) {
