@@ -80,19 +80,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const Point& p : s.control)
     if (!p.allFinite()) fuzz::finding("a non-finite control point");
   if (!r.report.max_deviation.allFinite()) fuzz::finding("a non-finite deviation in the report");
-  if (r.u.size() != rows.total_points() || r.v.size() != rows.size())
+  if (r.u.size() != rows.total_points() || r.v.size() != rows.size() ||
+      (!r.v_points.empty() && r.v_points.size() != rows.total_points()))
     fuzz::finding("parameters do not match the points");
 
-  // Independent check of the report: evaluate every point.
+  // Independent check of the report: evaluate every point, at its own v where the rule gives
+  // one per point (geometric parameters: FitResult::v_for_points()).
   // Slack for rounding: the fit runs centred, this evaluation at the data's own offset.
   const BoundingBox box = bounding_box(rows);
   const double offset = box.min.cwiseAbs().cwiseMax(box.max.cwiseAbs()).maxCoeff();
   const double slack = 1e-9 * diag + 1e-13 * offset;
   Point worst = Point::Zero();
+  const bool per_point = !r.v_points.empty();
   std::size_t k = 0;
   for (std::size_t j = 0; j < rows.size(); ++j)
     for (const Point& p : rows[j]) {
-      const Point d = (s.evaluate(r.u[k++], r.v[j]) - p).cwiseAbs();
+      const double v = per_point ? r.v_points[k] : r.v[j];
+      const Point d = (s.evaluate(r.u[k++], v) - p).cwiseAbs();
       if (!d.allFinite()) fuzz::finding("the surface evaluates to a non-finite point");
       worst = worst.cwiseMax(d);
     }

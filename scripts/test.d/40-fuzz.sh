@@ -35,6 +35,8 @@ for f in "${sources[@]}"; do
   { printf '\x13\x13\x00'; cat "$work/rows3"; } >"$work/fitter/seed$n-deg20-interp"
 done
 rm -f "$work/rows3"
+# Inputs that once found a problem (fuzz/regressions/<target>-<what>): run first, kept in the corpus.
+for f in fuzz/regressions/fitter-*; do cp "$f" "$work/fitter/"; done
 # Surface seeds: small surfaces fitted by this build's CLI from the seeds above.
 for f in tests/bad_input/good.rows "$work"/rows/*; do
   "$cli" fit "$f" -q -o "$work/surface_json/$(basename "$f").json" 2>/dev/null || true
