@@ -8,6 +8,7 @@
 
 #include "reference_eval.h"
 #include "sfit/fold_check.h"
+#include "sfit/io/report_json.h"
 #include "sfit/io/surface_json.h"
 #include "sfit/surface_fit.h"
 #include "test_support.h"
@@ -100,6 +101,12 @@ TEST(AdaptiveKnots, CorneredSectionsAndALocalBumpNeedAtLeastThirtyPercentFewer) 
     report(name, 1e-3, p);
     EXPECT_LE(count(p.adaptive), 0.7 * count(p.uniform));
     EXPECT_TRUE(p.adaptive.surface.non_uniform());
+    // The report says which knots made it, and so does its JSON (read back).
+    EXPECT_EQ(p.adaptive.report.knots, KnotRule::kAdaptive);
+    EXPECT_EQ(p.uniform.report.knots, KnotRule::kUniform);
+    EXPECT_EQ(io::report_from_json_text(io::report_to_json_text(p.adaptive.report, -1), "r.json")
+                  .knots,
+              KnotRule::kAdaptive);
     expect_holds(rows, p.adaptive);
   }
 }
@@ -120,6 +127,7 @@ TEST(AdaptiveKnots, NeverMoreThanUniform) {
         // Not smaller: the uniform surface itself, bit for bit.
         EXPECT_EQ(p.adaptive.surface.control, p.uniform.surface.control);
         EXPECT_FALSE(p.adaptive.surface.non_uniform());
+        EXPECT_EQ(p.adaptive.report.knots, KnotRule::kUniform);
       }
       expect_holds(rows, p.adaptive);
     }

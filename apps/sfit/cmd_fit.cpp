@@ -124,6 +124,11 @@ int run_fit(const FitArgs& a) {
           : fmt::format(" (rows need {}..{}, columns {}..{})", *rmin, *rmax, *cmin, *cmax);
   say(fmt::format("surface {} x {} control points{}; {} parameters", r.count_u, r.count_v, stages,
                   to_string(r.parametrization)));
+  if (o.knots == KnotRule::kAdaptive)
+    say(r.knots == KnotRule::kAdaptive
+            ? fmt::format("adaptive knots: {} x {} control points, fewer than on uniform knots",
+                          r.count_u, r.count_v)
+            : std::string("adaptive knots: none smaller than uniform held; uniform knots kept"));
   if (r.degree_v != o.degree_v)
     say(
         fmt::format("degree across the rows {} (asked: {}): at {} the surface folded back on "

@@ -202,7 +202,7 @@ async function applyOptionsTable() {
     $(id).min = spec("degree").min;
     $(id).max = spec("degree").max;
   }
-  for (const [id, name] of [["params", "parameters"], ["search", "search"]]) {
+  for (const [id, name] of [["params", "parameters"], ["search", "search"], ["knots", "knots"]]) {
     const keep = $(id).value;
     $(id).replaceChildren(...spec(name).choices.filter((c) => c !== "known").map((c) => {
       const o = document.createElement("option");

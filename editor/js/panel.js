@@ -119,6 +119,7 @@ export function showOptions() {
   $("closedU").checked = o.closed[0]; $("closedV").checked = o.closed[1];
   $("params").value = o.parameters === "known" ? "auto" : o.parameters;
   $("search").value = o.search === "linear" ? "linear" : "fast";
+  $("knots").value = o.knots || "uniform";
   $("hold").checked = !!o.hold;
   $("units").textContent = unitOf() || "data units";
 }
@@ -253,6 +254,7 @@ $("degU").addEventListener("change", () => sendOptions({ degree: [Number($("degU
 $("degV").addEventListener("change", () => sendOptions({ degree: [Number($("degU").value), Number($("degV").value)] }));
 for (const id of ["closedU", "closedV"])
   $(id).addEventListener("change", () => sendOptions({ closed: [$("closedU").checked, $("closedV").checked] }));
+$("knots").addEventListener("change", () => sendOptions({ knots: $("knots").value }));
 $("params").addEventListener("change", () => { S.ruleBeforeHold = $("params").value; sendOptions({ parameters: $("params").value }); });
 $("search").addEventListener("change", () => sendOptions({ search: $("search").value }));
 // The hold: counts and rule kept (released: the rule chosen before, and the search again).

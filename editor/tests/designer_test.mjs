@@ -160,6 +160,27 @@ test("typed T: a number, with a unit or % of the diagonal; nonsense refused in p
   assert.deepEqual((await api.get("/api/state")).json.options.tolerance, initial.options.tolerance);
 });
 
+test("the knots menu: adaptive knots asked for from the page, reported by the server, undone", async () => {
+  const choices = await page.$$eval("#knots option", (os) => os.map((o) => o.textContent));
+  assert.deepEqual(choices, ["uniform", "adaptive"], "the choices are the option table's");
+  const st0 = await consistent("before the knots");
+  assert.equal(await page.$eval("#knots", (e) => e.value), "uniform");
+  const v = await version();
+  await page.select("#knots", "adaptive");
+  await settled(v + 1);
+  const st = await consistent("adaptive knots");
+  assert.equal(st.options.knots, "adaptive");
+  assert.equal(st.report.within_tolerance, true);
+  const n = (r) => r.control_points[0] * r.control_points[1];
+  assert.ok(n(st.report) <= n(st0.report), `never more control points: ${n(st.report)} vs ${n(st0.report)}`);
+  assert.equal(st.report.knots, n(st.report) < n(st0.report) ? "adaptive" : "uniform");
+  await page.click("#undo");
+  await settled(v + 2);
+  const back = await consistent("undone");
+  assert.equal(back.options.knots, "uniform");
+  assert.equal(await page.$eval("#knots", (e) => e.value), "uniform", "the menu follows the undo");
+});
+
 test("legends for deviation and curvature; zebra stripe controls; the control net's points can be looked at", async () => {
   await page.select("#mode", "deviation");
   await page.evaluate(() => window.sfitEditor.nextFrame());

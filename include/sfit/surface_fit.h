@@ -137,6 +137,9 @@ struct FitReport {
   double box_excursion = 0;  ///< largest distance of the sampled surface outside the data's box
   double fold = 0;           ///< how far the surface doubles back between rows (fold_check.h)
   double row_gap = 0;        ///< largest distance, sampled between rows, to the nearer data row
+  /// The knots that made the surface: kAdaptive where `--knots adaptive` found a smaller
+  /// surface on its own knots (kept), else kUniform.
+  KnotRule knots = KnotRule::kUniform;
   /// kSurface: the rules the search looked at, in order: their pairs tried, or none where the
   /// rows fitted alone at T need more control points than the search could win with (empty: no
   /// search, e.g. T = 0).

@@ -283,6 +283,7 @@ bool adapt_knots(const Rows& rows, const FitOptions& o, FitResult& r) {
   r.report.worst_index = c.worst_index;
   r.report.worst_deviation = c.worst_deviation;
   r.report.fold = fold_measure(r.surface, r.v);
+  r.report.knots = KnotRule::kAdaptive;
   return true;
 }
 

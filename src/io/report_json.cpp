@@ -108,6 +108,8 @@ FitReport report_from_json_text(std::string_view text, const std::string& name) 
     named(j, key, r.parametrization_across, parse_parametrization, name);
     key = "row_gap";
     r.row_gap = j.at(key).get<double>();
+    key = "knots";  // written since knot vectors are data; older reports: uniform
+    if (j.contains(key)) named(j, key, r.knots, parse_knot_rule, name);
   } catch (const json::exception&) {
     bad(name, std::string("\"") + key + "\" is missing or of the wrong type");
   }

@@ -80,6 +80,7 @@ json report_to_json(const FitReport& r) {
   j["fold"] = r.fold;
   j["parameters_across"] = std::string(to_string(r.parametrization_across));
   j["row_gap"] = r.row_gap;
+  j["knots"] = std::string(to_string(r.knots));
   return j;
 }
 
