@@ -60,6 +60,7 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.waitForFunction(() => window.sfitEditor.selected() !== null);
   await page.mouse.move(s.x, s.y);
   const frames0 = await page.evaluate(() => window.sfitEditor.frames);
+  await page.evaluate(() => { window.sfitEditor.pressT = performance.now(); window.sfitEditor.influenceTimes = null; });
   await page.mouse.down();
   const moves = 60;
   for (let k = 1; k <= moves; k++) {
@@ -73,9 +74,16 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging &&
     !window.sfitEditor.searching, { timeout: 120000 });
   await page.evaluate(() => window.sfitEditor.nextFrame());  // the last latency recorded
-  const { lat, times, dropped, counts } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
-    times: window.sfitEditor.moves, dropped: window.sfitEditor.dropped.length, counts: window.sfitEditor.state.report.control_points }));
-  results.push({ moves, lat, times, dropped, counts, frames });
+  const { lat, times, dropped, counts, checks, infl } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
+    times: window.sfitEditor.moves, dropped: window.sfitEditor.dropped.length, counts: window.sfitEditor.state.report.control_points,
+    checks: window.sfitEditor.predictionChecks.splice(0), infl: window.sfitEditor.influenceTimes }));
+  results.push({ moves, lat, times, dropped, counts, frames, checks, infl });
+}
+// One latency per move: where a move was drawn twice (the server's answer, then the page's
+// prediction once the influence arrived during the drag), the first frame.
+for (const r of results) {
+  const seen = new Set();
+  r.lat = r.lat.filter((l) => l.phase !== "drag" || (!seen.has(l.t) && seen.add(l.t)));
 }
 const dragLat = results.flatMap((r) => r.lat.filter((l) => l.phase === "drag"));
 results.forEach((r, k) => {
@@ -84,7 +92,10 @@ results.forEach((r, k) => {
   console.log(`  drag ${k + 1} (counts at its start ${k ? results[k - 1].counts.join(" x ") : "of the first fit"}): ` +
     `p50 ${m("ms")} ms, p95 ${pctl(d.map((l) => l.ms), 0.95).toFixed(1)} ms; waiting ${m("wait")}, request ${m("request")} ms ` +
     `(refit ${m("server")}), drawing ${m("draw")}, to the next animation frame ${m("show")}; drawn ${d.length} of ${r.moves}; ` +
-    `frames drawn during the drag ${r.frames}`);
+    `frames drawn during the drag ${r.frames}; predicted (drawn by the page) ${d.filter((l) => l.predicted).length}, ` +
+    `server answers checked against their prediction ${r.checks.length} (largest difference ${Math.max(0, ...r.checks.map((c) => c.off)).toExponential(1)} ` +
+    `of the control points' size); the first five moves shown ${d.slice().sort((a, b) => a.t - b.t).slice(0, 5).map((l) => l.ms.toFixed(0) + (l.predicted ? "" : " (server)")).join(", ")} ms; influence asked ` +
+    `${r.infl ? `${r.infl.asked.toFixed(0)} ms before the press, there ${r.infl.got.toFixed(0)} ms after it` : "never"}`);
 });
 const drag = dragLat.map((l) => l.ms);
 const fin = results.flatMap((r) => r.lat.filter((l) => l.final).map((l) => l.ms));
