@@ -220,6 +220,8 @@ Object.assign(S.fns, {
 
 // ---- for tests and benchmarks ------------------------------------------------------------
 hook.screenOf = (row, index) => view.screenOf(S.rows[row][index]);
+hook.movesSettled = () => !inFlight && !pending;  // every move sent and answered (a drag may go on)
+hook.surfaceShown = () => S.state.surface.control_points;
 hook.nextFrame = () => new Promise((res) => { view.onFrameShown(res); view.redraw(); });
 hook.rows = () => S.rows;
 hook.selected = () => S.selected;
