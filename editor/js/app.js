@@ -140,6 +140,15 @@ const PREDICTED_GAP = 100;
 let lastSent = -Infinity, gapTimer = null;
 async function pump() {
   if (inFlight || !pending) return;
+  // A drag's first steps wait for the influence asked for (the prediction draws them when it
+  // comes): a step the server took first would make it "a drag under way", not linear.
+  const d = S.drag;
+  if (pending.phase === "drag" && !pending.pk && d && !d.pred && predict.asked()) {
+    predict.whenSettled(pump);
+    return;
+  }
+  if (pending.phase === "drag" && !pending.pk && d && d.pred && d.row === pending.row && d.index === pending.index)
+    pending.pk = d.pred;  // queued before the prediction began: checked against it too
   if (pending.pk && pending.phase === "drag" && performance.now() - lastSent < PREDICTED_GAP) {
     if (!gapTimer) gapTimer = setTimeout(() => { gapTimer = null; pump(); }, PREDICTED_GAP - (performance.now() - lastSent));
     return;
@@ -167,6 +176,11 @@ async function pump() {
   if (pending) pump();
   if (st && !st.skipped) {
     if (job.phase === "drag" && job.pk) answerPredicted(st, job);
+    else if (job.phase === "drag" && S.drag && S.drag.pred) {  // sent before the prediction began: older
+      S.state = { ...st, surface: S.state.surface };
+      hook.state = S.state;
+      panel.showReport();
+    }
     else if (job.phase === "drag") view.showWhenFree(st, job, applyState);  // drawn now, or when the frame before is done
     else applyState(st, job);
   }

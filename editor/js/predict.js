@@ -41,7 +41,8 @@ export function prefetch() {
     hook.influence = { row: k.row, index: k.index, version: k.version, linear: k.linear, why: k.why };
     if (hook.pressT !== undefined && !hook.influenceTimes) hook.influenceTimes = { asked: hook.pressT - t0, got: performance.now() - hook.pressT };
     if (onArrival) onArrival(k);
-  }, () => { if (asking === key) asking = null; });
+    settle();
+  }, () => { if (asking === key) asking = null; settle(); });
 }
 
 /// The prediction for a drag of point (row, index) that started at state `version`: calls
@@ -55,6 +56,11 @@ export function forDrag(row, index, version, use) {
   return false;
 }
 export function dropDrag() { onArrival = null; }
+/// True while an influence asked for has not arrived; `then` runs when it does (or fails).
+export const asked = () => asking !== null;
+let settled = [];
+export function whenSettled(then) { settled.push(then); }
+function settle() { const fs = settled; settled = []; for (const f of fs) f(); }
 
 /// The control points S0 + g (to - p0) as the surface contract (nested control_points).
 export function predicted(k, to) {
