@@ -94,7 +94,8 @@ results.forEach((r, k) => {
     `(refit ${m("server")}), drawing ${m("draw")}, to the next animation frame ${m("show")}; drawn ${d.length} of ${r.moves}; ` +
     `frames drawn during the drag ${r.frames}; predicted (drawn by the page) ${d.filter((l) => l.predicted).length}, ` +
     `server answers checked against their prediction ${r.checks.length} (largest difference ${Math.max(0, ...r.checks.map((c) => c.off)).toExponential(1)} ` +
-    `of the control points' size); the first five moves shown ${d.slice().sort((a, b) => a.t - b.t).slice(0, 5).map((l) => l.ms.toFixed(0) + (l.predicted ? "" : " (server)")).join(", ")} ms; influence asked ` +
+    `of the control points' size); the first five moves shown ${d.slice().sort((a, b) => a.t - b.t).slice(0, 5).map((l) => l.ms.toFixed(0) + (l.predicted ? "" : " (server)")).join(", ")} ms (the first: waiting for the frame before ` +
+    `${(d.slice().sort((a, b) => a.t - b.t)[0] || {}).slot?.toFixed(0)}, drawing ${(d.slice().sort((a, b) => a.t - b.t)[0] || {}).draw?.toFixed(0)}); influence asked ` +
     `${r.infl ? `${r.infl.asked.toFixed(0)} ms before the press, there ${r.infl.got.toFixed(0)} ms after it` : "never"}`);
 });
 const drag = dragLat.map((l) => l.ms);

@@ -227,7 +227,8 @@ async function run(p, then) {
 }
 
 Object.assign(S.fns, {
-  applyState, queueMove, showPrediction, dropStaleSearch, run, refresh, message: panel.message, showCoords: panel.showCoordsSoon,
+  applyState, queueMove, showPrediction, dropStaleSearch, run,
+  coarseSurface: () => { buildSurface(false); view.redraw(); }, refresh, message: panel.message, showCoords: panel.showCoordsSoon,
   showSelection: panel.showSelection, checkNear: panel.checkNear, step: panel.step,
   moveInFlight: () => inFlight, readOnlyEdits: () => false,
 });

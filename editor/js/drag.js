@@ -152,6 +152,7 @@ function beginDrag(hit, e) {
   controls.enabled = false;
   coarseImage(true);
   dragDetail(hit.row);  // the press's own frame is already the light one of the drag
+  S.fns.coarseSurface();  // and draws the drag's coarse tessellation (a new mesh, slow to draw first)
   showConstraint(base, S.drag.origin);
   S.fns.message(`dragging in the ${base.label}: Tab locks the direction, Esc cancels`, true);
   canvas.setPointerCapture(e.pointerId);
