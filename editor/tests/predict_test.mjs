@@ -86,8 +86,10 @@ test("held, uniform parameters: the page draws the refit itself, and it is the s
   await page.mouse.up();
   await settled(v + 1);
   const lat = await page.evaluate(() => window.sfitEditor.latencies.filter((l) => l.phase === "drag"));
+  // Every move drawn was drawn from the prediction (none waited for the server), however many
+  // a newer one overtook on a loaded machine.
   const predicted = lat.filter((l) => l.predicted).length;
-  assert.ok(predicted >= 10, `moves drawn from the prediction: ${predicted} of 20 (${lat.length} drawn)`);
+  assert.ok(predicted >= 5 && predicted === lat.length, `moves drawn from the prediction: ${predicted} of ${lat.length} drawn (20 moves)`);
   const checks = await page.evaluate(() => window.sfitEditor.predictionChecks);
   assert.ok(checks.length >= 1, "the server's answers were compared with their predictions");
   for (const c of checks) assert.ok(c.off <= 1e-9, `answer ${c.seq}: off by ${c.off} of the control points' size`);
