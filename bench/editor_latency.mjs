@@ -5,7 +5,10 @@
 // overtook are skipped, not shown (latest wins), so only the shown ones have a latency of
 // their own; every mouse event is also timed to the first frame showing it or a newer step.
 // Reports p50/p95, the moves drawn and superseded, and the machine's load (1-minute load
-// average, at the start and the end). A benchmark, not a test: nothing is asserted.
+// average, at the start and the end). Per drag also: the moves drawn from the page's own
+// prediction of the refit (editor/js/predict.js) and the server's answers checked against it
+// (the largest difference), the first five moves' latencies and the first one's split.
+// A benchmark, not a test: nothing is asserted.
 // `hold`: with the shape held (calm sculpting: the release's full search is shown, the counts
 // and rule kept), so the second drag runs at the first fit's counts too; without it the
 // release's full search replaces the surface (94 x 96 control points after the first drag).
