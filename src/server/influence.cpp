@@ -56,6 +56,8 @@ json drag_influence(const Session& session, std::size_t row, std::size_t index) 
       q.parametrization != Parametrization::kPaper)
     return no("parameters " + std::string(to_string(q.parametrization)) + " move with the point");
   if (rows.weighted()) return no("weighted rows");
+  if (q.knots == KnotRule::kAdaptive)
+    return no("adaptive knots (placed where the residuals concentrate: they move with the point)");
   if (q.closed_u && q.seam == SeamMode::kAlign)
     return no("closed rows aligned at their seams (the seams move with the point)");
 

@@ -21,9 +21,9 @@ namespace sfit::server {
 /// little-endian doubles g(i, j), in the order of S0's packed control points); else "why".
 /// Linear: the surface method at held counts by least squares (quick_refit_options()), the
 /// parameters uniform or paper (their u and v do not depend on where the points are), open
-/// rows or seams kept, no weights, no drag under way; and checked: g from a move of the point
-/// by (h, 2h, -h) must agree on x, y and z (1e-9 of its largest value) and keep the surface's
-/// shape. Error kUsage for a point that does not exist.
+/// rows or seams kept, no weights, uniform knots, no drag under way; and checked: g from a
+/// move of the point by (h, 2h, -h) must agree on x, y and z (1e-9 of its largest value) and
+/// keep the surface's shape. Error kUsage for a point that does not exist.
 nlohmann::json drag_influence(const Session& session, std::size_t row, std::size_t index);
 
 }  // namespace sfit::server

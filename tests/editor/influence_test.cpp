@@ -108,6 +108,18 @@ TEST(DragInfluence, NoneWhereTheParametersMoveWithThePoint) {
   }
 }
 
+TEST(DragInfluence, NoneWithAdaptiveKnots) {
+  Rows rows = terrain(30, 40);
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, 1e-3);
+  o.parametrization = Parametrization::kUniform;
+  o.knots = KnotRule::kAdaptive;
+  Session s(std::move(rows), o);
+  const nlohmann::json j = drag_influence(s, 3, 4);
+  EXPECT_FALSE(j["linear"].get<bool>());
+  EXPECT_NE(j["why"].get<std::string>().find("adaptive knots"), std::string::npos) << j.dump();
+}
+
 TEST(DragInfluence, ANonexistentPointIsAUsageError) {
   Session s = session_at(Parametrization::kUniform);
   try {
