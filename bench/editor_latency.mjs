@@ -5,7 +5,10 @@
 // overtook are skipped, not shown (latest wins), so only the shown ones have a latency of
 // their own; every mouse event is also timed to the first frame showing it or a newer step.
 // Reports p50/p95, the moves drawn and superseded, and the machine's load (1-minute load
-// average, at the start and the end). A benchmark, not a test: nothing is asserted.
+// average, at the start and the end). Per drag also: the moves drawn from the page's own
+// prediction of the refit (editor/js/predict.js) and the server's answers checked against it
+// (the largest difference), the first five moves' latencies and the first one's split.
+// A benchmark, not a test: nothing is asserted.
 // `hold`: with the shape held (calm sculpting: the release's full search is shown, the counts
 // and rule kept), so the second drag runs at the first fit's counts too; without it the
 // release's full search replaces the surface (94 x 96 control points after the first drag).
@@ -60,6 +63,7 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.waitForFunction(() => window.sfitEditor.selected() !== null);
   await page.mouse.move(s.x, s.y);
   const frames0 = await page.evaluate(() => window.sfitEditor.frames);
+  await page.evaluate(() => { window.sfitEditor.pressT = performance.now(); window.sfitEditor.influenceTimes = null; });
   await page.mouse.down();
   const moves = 60;
   for (let k = 1; k <= moves; k++) {
@@ -73,9 +77,16 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging &&
     !window.sfitEditor.searching, { timeout: 120000 });
   await page.evaluate(() => window.sfitEditor.nextFrame());  // the last latency recorded
-  const { lat, times, dropped, counts } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
-    times: window.sfitEditor.moves, dropped: window.sfitEditor.dropped.length, counts: window.sfitEditor.state.report.control_points }));
-  results.push({ moves, lat, times, dropped, counts, frames });
+  const { lat, times, dropped, counts, checks, infl } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
+    times: window.sfitEditor.moves, dropped: window.sfitEditor.dropped.length, counts: window.sfitEditor.state.report.control_points,
+    checks: window.sfitEditor.predictionChecks.splice(0), infl: window.sfitEditor.influenceTimes }));
+  results.push({ moves, lat, times, dropped, counts, frames, checks, infl });
+}
+// One latency per move: where a move was drawn twice (the server's answer, then the page's
+// prediction once the influence arrived during the drag), the first frame.
+for (const r of results) {
+  const seen = new Set();
+  r.lat = r.lat.filter((l) => l.phase !== "drag" || (!seen.has(l.t) && seen.add(l.t)));
 }
 const dragLat = results.flatMap((r) => r.lat.filter((l) => l.phase === "drag"));
 results.forEach((r, k) => {
@@ -84,7 +95,11 @@ results.forEach((r, k) => {
   console.log(`  drag ${k + 1} (counts at its start ${k ? results[k - 1].counts.join(" x ") : "of the first fit"}): ` +
     `p50 ${m("ms")} ms, p95 ${pctl(d.map((l) => l.ms), 0.95).toFixed(1)} ms; waiting ${m("wait")}, request ${m("request")} ms ` +
     `(refit ${m("server")}), drawing ${m("draw")}, to the next animation frame ${m("show")}; drawn ${d.length} of ${r.moves}; ` +
-    `frames drawn during the drag ${r.frames}`);
+    `frames drawn during the drag ${r.frames}; predicted (drawn by the page) ${d.filter((l) => l.predicted).length}, ` +
+    `server answers checked against their prediction ${r.checks.length} (largest difference ${Math.max(0, ...r.checks.map((c) => c.off)).toExponential(1)} ` +
+    `of the control points' size); the first five moves shown ${d.slice().sort((a, b) => a.t - b.t).slice(0, 5).map((l) => l.ms.toFixed(0) + (l.predicted ? "" : " (server)")).join(", ")} ms (the first: waiting for the frame before ` +
+    `${(d.slice().sort((a, b) => a.t - b.t)[0] || {}).slot?.toFixed(0)}, drawing ${(d.slice().sort((a, b) => a.t - b.t)[0] || {}).draw?.toFixed(0)}); influence asked ` +
+    `${r.infl ? `${r.infl.asked.toFixed(0)} ms before the press, there ${r.infl.got.toFixed(0)} ms after it` : "never"}`);
 });
 const drag = dragLat.map((l) => l.ms);
 const fin = results.flatMap((r) => r.lat.filter((l) => l.final).map((l) => l.ms));

@@ -9,7 +9,7 @@ export class ApiError extends Error {}
 let full = 0;
 export const fullInFlight = () => full;
 const light = (path, body) => path.startsWith("/api/progress") || path === "/api/cancel" ||
-  (path.startsWith("/api/state") || path === "/api/options-table") || (body && body.phase === "drag");
+  (path.startsWith("/api/state") || path === "/api/options-table" || path === "/api/influence") || (body && body.phase === "drag");
 
 export async function call(method, path, body) {
   const counted = !light(path, body);
@@ -32,13 +32,18 @@ export const getState = (rows = true) => call("GET", `/api/state${rows ? "" : "?
 // A drag step's answer comes with its control points packed as floats for drawing (base64,
 // far cheaper than JSON numbers for thousands of them, half the bytes of exact doubles; the
 // final surface at rest comes exact); unpacked here into the surface contract.
-export const edit = async (op, rows = true) => {
+// `exact`: a drag step's control points packed exactly (doubles), to compare with the page's
+// own prediction of the step (predict.js).
+export const edit = async (op, rows = true, exact = false) => {
   const drag = op.phase === "drag";
-  const st = await call("POST", `/api/edit${rows ? "" : "?rows=0"}${drag ? (rows ? "?" : "&") + "pack=f32" : ""}`, op);
+  const pack = drag ? (rows ? "?" : "&") + (exact ? "pack=1" : "pack=f32") : "";
+  const st = await call("POST", `/api/edit${rows ? "" : "?rows=0"}${pack}`, op);
   if (st.surface && st.surface.control_points_shape) unpack(st.surface);
   return st;
 };
 
+// The moved point's influence on the quick refit (docs/editor.md, "Latency"; predict.js).
+export const influence = (row, index) => call("POST", "/api/influence", { row, index });
 export const undo = () => call("POST", "/api/undo", {});
 export const redo = () => call("POST", "/api/redo", {});
 export const setOptions = (o) => call("POST", "/api/options", o);

@@ -8,6 +8,7 @@ import { buildSurface, buildPoints, updateMarkers, constraintShown, dragDetail, 
 import * as panel from "./panel.js";
 import * as drag from "./drag.js";
 import * as api from "./api.js";
+import * as predict from "./predict.js";
 
 // ---- showing a state ---------------------------------------------------------------------
 let lastFinal = null;  // counts and rule of the last final surface shown: before -> after
@@ -44,6 +45,44 @@ function applyState(st, job) {
     view.onFrameShown((now, start, drawn) => hook.latencies.push({ t: job.t, ms: now - job.t, final: st.final,
       phase: job.phase, wait: job.sent - job.t, request: job.received - job.sent, server: 1000 * st.report.seconds,
       apply: now - job.received, slot: t0 - job.received, js: start - t0, draw: drawn - start, show: now - drawn }));
+  if (st.rows && !st.dragging) predict.prefetch();  // the selected point's influence for its next drag
+}
+
+// ---- the drag's prediction (predict.js): S0 + g d drawn at the pointer move itself ---------
+// `job` {to, t}: drawn when the frame before is done; a newer move supersedes it (latest wins).
+// The state drawn is the last answer's with the predicted control points.
+const NEWEST = { version: Number.MAX_SAFE_INTEGER };
+function showPrediction(job) {
+  view.showWhenFree(NEWEST, job, applyPrediction);
+}
+function applyPrediction(_, job) {
+  const t0 = performance.now();
+  const d = S.drag;
+  if (!d || !d.pred) return;
+  S.state = { ...S.state, surface: predict.predicted(d.pred, job.to), final: false, dragging: true };
+  buildSurface(false);
+  hook.shown.push({ version: S.state.version, final: false, predicted: true, t: performance.now() });
+  view.redraw();
+  view.onFrameShown((now, start, drawn) => hook.latencies.push({ t: job.t, ms: now - job.t, final: false,
+    phase: "drag", predicted: true, wait: 0, request: 0, server: 0, apply: now - t0, slot: t0 - job.t,
+    js: start - t0, draw: drawn - start, show: now - drawn }));
+}
+// A drag step's answer to a predicted move: compared with the prediction of the same move.
+// Where they agree it replaces the page's state (report, version) without drawing again: the
+// surface drawn is that prediction or a newer one's. Where they do not, the prediction stops
+// for this drag and the answer is drawn.
+function answerPredicted(st, job) {
+  const off = predict.mismatch(job.pk, job.to, st.surface);
+  hook.predictionChecks.push({ seq: job.seq, off });
+  const d = S.drag;
+  if (off <= 1e-9 && d && d.pred === job.pk) {
+    S.state = { ...st, surface: S.state.surface };
+    hook.state = S.state;
+    panel.showReport();
+    return;
+  }
+  if (d && d.pred === job.pk) d.pred = null;
+  view.showWhenFree(st, job, applyState);
 }
 
 // Calm sculpting: the count change of a final surface is shown (before -> after); with the
@@ -94,17 +133,37 @@ function queueMove(job) {
   if (job.phase === "drag") dropStaleSearch();
   pump();
 }
+// A predicted drag step (its frame already drawn by the page) goes out at most every
+// PREDICTED_GAP ms, the newest position then: the server's answers only replace the readout
+// (deviation, T used), and a request less in flight leaves the two cores to the drawing.
+const PREDICTED_GAP = 100;
+let lastSent = -Infinity, gapTimer = null;
 async function pump() {
   if (inFlight || !pending) return;
+  // A drag's first steps wait for the influence asked for (the prediction draws them when it
+  // comes): a step the server took first would make it "a drag under way", not linear.
+  const d = S.drag;
+  if (pending.phase === "drag" && !pending.pk && d && !d.pred && predict.asked()) {
+    predict.whenSettled(pump);
+    return;
+  }
+  if (pending.phase === "drag" && !pending.pk && d && d.pred && d.row === pending.row && d.index === pending.index)
+    pending.pk = d.pred;  // queued before the prediction began: checked against it too
+  if (pending.pk && pending.phase === "drag" && performance.now() - lastSent < PREDICTED_GAP) {
+    if (!gapTimer) gapTimer = setTimeout(() => { gapTimer = null; pump(); }, PREDICTED_GAP - (performance.now() - lastSent));
+    return;
+  }
   const job = pending; pending = null; inFlight = true; current = job;
+  lastSent = performance.now();
   job.sent = performance.now();
   let st = null;
   try {
     // seq from the wall clock (microseconds), so it grows across pages too: a page opened
     // after another has dragged is not taken for stale steps by the server.
     seq = Math.max(seq + 1, Math.floor((performance.timeOrigin + performance.now()) * 1000));
+    job.seq = seq;
     st = await api.edit({ op: "move", row: job.row, index: job.index, to: job.to,
-      phase: job.phase, seq }, job.phase !== "drag");
+      phase: job.phase, seq }, job.phase !== "drag", !!job.pk);
     job.received = performance.now();
     if (st.cancelled) hook.dropped.push({ phase: job.phase, version: st.version });
   } catch (e) {
@@ -112,11 +171,17 @@ async function pump() {
     if (job.phase !== "drag") refresh();
   }
   inFlight = false; current = null;
-  view.redraw();
+  if (!job.pk) view.redraw();  // a predicted step's frame is the prediction's
   // The newest position goes out at once, while this answer is drawn.
   if (pending) pump();
   if (st && !st.skipped) {
-    if (job.phase === "drag") view.showWhenFree(st, job, applyState);  // drawn now, or when the frame before is done
+    if (job.phase === "drag" && job.pk) answerPredicted(st, job);
+    else if (job.phase === "drag" && S.drag && S.drag.pred) {  // sent before the prediction began: older
+      S.state = { ...st, surface: S.state.surface };
+      hook.state = S.state;
+      panel.showReport();
+    }
+    else if (job.phase === "drag") view.showWhenFree(st, job, applyState);  // drawn now, or when the frame before is done
     else applyState(st, job);
   }
   if (!inFlight && !pending && S.drag && job.phase === "drag") {
@@ -162,13 +227,16 @@ async function run(p, then) {
 }
 
 Object.assign(S.fns, {
-  applyState, queueMove, run, refresh, message: panel.message, showCoords: panel.showCoordsSoon,
+  applyState, queueMove, showPrediction, dropStaleSearch, run,
+  coarseSurface: () => { buildSurface(false); view.redraw(); }, refresh, message: panel.message, showCoords: panel.showCoordsSoon,
   showSelection: panel.showSelection, checkNear: panel.checkNear, step: panel.step,
   moveInFlight: () => inFlight, readOnlyEdits: () => false,
 });
 
 // ---- for tests and benchmarks ------------------------------------------------------------
 hook.screenOf = (row, index) => view.screenOf(S.rows[row][index]);
+hook.movesSettled = () => !inFlight && !pending;  // every move sent and answered (a drag may go on)
+hook.surfaceShown = () => S.state.surface.control_points;
 hook.nextFrame = () => new Promise((res) => { view.onFrameShown(res); view.redraw(); });
 hook.rows = () => S.rows;
 hook.selected = () => S.selected;

@@ -10,6 +10,7 @@ import { $, S, hook } from "./store.js";
 import { canvas, controls, camera, coarseImage, redraw, screenOf, rayOf, local, global, fitView } from "./view.js";
 import { moveDrawnPoint, updateMarkers, showConstraint, netPointNear, dragDetail } from "./draw.js";
 import { evaluate } from "./bspline.js";
+import * as predict from "./predict.js";
 
 const PICK_PX = 12;
 export function pick(x, y) {
@@ -136,9 +137,22 @@ function setPoint(row, index, p) {
 function beginDrag(hit, e) {
   const p = S.rows[hit.row][hit.index];
   const base = constraintFor($("axis").value, hit.row, hit.index);
-  S.drag = { ...hit, start: p.slice(), origin: local(p), base, c: base, last: null, locked: false };
+  S.drag = { ...hit, start: p.slice(), origin: local(p), base, c: base, last: null, locked: false, pred: null };
+  // The refit predicted in the page where it is linear (predict.js): from the first move, or
+  // from the move under way when the influence arrives during the drag.
+  const drag = S.drag;
+  const ready = predict.forDrag(hit.row, hit.index, S.state.version, (k) => {
+    if (S.drag !== drag) return;
+    drag.pred = k;
+    if (drag.last) S.fns.showPrediction({ to: drag.last.to, t: drag.lastT });
+  });
+  // A full search under way (the hold's) holds the session, the influence waits behind it:
+  // the drag's first step would drop it anyway.
+  if (!ready) S.fns.dropStaleSearch();
   controls.enabled = false;
   coarseImage(true);
+  dragDetail(hit.row);  // the press's own frame is already the light one of the drag
+  S.fns.coarseSurface();  // and draws the drag's coarse tessellation (a new mesh, slow to draw first)
   showConstraint(base, S.drag.origin);
   S.fns.message(`dragging in the ${base.label}: Tab locks the direction, Esc cancels`, true);
   canvas.setPointerCapture(e.pointerId);
@@ -173,16 +187,19 @@ canvas.addEventListener(moveEvent, (e) => {
   dragDetail(d.row);  // the other rows' points come back when the hand rests
   setPoint(d.row, d.index, to);
   d.last = { row: d.row, index: d.index, to };
+  d.lastT = e.timeStamp;
   hook.moves.push(e.timeStamp);
-  S.fns.queueMove({ ...d.last, phase: "drag", t: e.timeStamp });
+  if (d.pred) S.fns.showPrediction({ to, t: e.timeStamp });
+  S.fns.queueMove({ row: d.row, index: d.index, to, phase: "drag", t: e.timeStamp, pk: d.pred || undefined });
   // Drawn with the refit of this step (or a newer one), whose answer comes next: a frame of
   // the moved point alone would only delay that one on a software rasteriser.
-  if (!S.fns.moveInFlight()) redraw();
+  if (!d.pred && !S.fns.moveInFlight()) redraw();
 });
 
 function finishDrag() {
   const d = S.drag;
   S.drag = null;
+  predict.dropDrag();
   controls.enabled = true;
   coarseImage(false);
   dragDetail(null);
@@ -226,6 +243,7 @@ function select(click) {
   }
   updateMarkers();
   redraw();
+  predict.prefetch();  // the influence of the selected point, for its drag
 }
 
 // Tab: the direction moved so far becomes the drag's line (again: the constraint returns).

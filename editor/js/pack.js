@@ -9,6 +9,8 @@ function decode(text) {
   for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
   return bytes.buffer;
 }
+/// The little-endian doubles of a base64 text.
+export const doubles = (text) => new Float64Array(decode(text));
 export function unpack(surface) {
   const f32 = surface.control_points_f32 !== undefined;
   const xyz = f32 ? new Float32Array(decode(surface.control_points_f32)) : new Float64Array(decode(surface.control_points_f64));

@@ -6,9 +6,11 @@ export const $ = (id) => document.getElementById(id);
 // For tests and benchmarks: the last state, frames drawn, move-to-frame latencies, the
 // times of the drag's mouse events; restMs: how long the hand rests before the full fit.
 // progress: the full searches' progress seen; dropped: the searches a drag made stale;
-// shown: every state drawn (version, final, time).
+// shown: every state drawn (version, final, time); predictionChecks: each predicted drag
+// step's answer against its prediction (seq, off: the difference over the control points'
+// size); influence: the last influence asked for (predict.js).
 export const hook = (window.sfitEditor = { state: null, frames: 0, latencies: [], moves: [], ready: false, restMs: 250,
-  progress: [], dropped: [], shown: [] });
+  progress: [], dropped: [], shown: [], predictionChecks: [], influence: null });
 
 export const S = {
   state: null,      // the last state from the server

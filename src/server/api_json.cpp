@@ -235,8 +235,6 @@ void apply_edit(Session& s, const json& r) {
   }
 }
 
-namespace {
-
 std::string base64(const unsigned char* data, std::size_t n) {
   static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
@@ -286,8 +284,6 @@ json packed_surface_json(const Surface& s, Pack pack) {
   j["control_points_f32"] = bytes(xyz);
   return j;
 }
-
-}  // namespace
 
 json state_json(const Session& s, bool with_rows, Pack pack) {
   const FitResult& fit = s.shown();

@@ -24,6 +24,11 @@ enum class Pack { kNone, kF64, kF32 };
 /// against T, options, undo and redo depths.
 nlohmann::json state_json(const Session& session, bool with_rows, Pack pack = Pack::kNone);
 
+/// Base64 of `n` bytes.
+std::string base64(const unsigned char* data, std::size_t n);
+/// The surface contract with its control points packed as `pack` says (kF64 or kF32).
+nlohmann::json packed_surface_json(const Surface& s, Pack pack);
+
 /// The fit options as the API shows and takes them.
 nlohmann::json options_json(const FitOptions& o);
 /// `current` with the fields of `request` changed ({"tolerance": T | [Tx, Ty, Tz],

@@ -10,6 +10,7 @@
 #include "drag_watch.h"
 #include "file_lock.h"
 #include "hold.h"
+#include "influence.h"
 #include "save_file.h"
 #include "search_watch.h"
 #include "session.h"

@@ -71,6 +71,19 @@ void EditorServer::Impl::session_routes() {
         },
         rest);
   });
+  // The influence of one point on the quick refit, for the page's prediction of a drag
+  // (influence.h).
+  http.Post("/api/influence", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] {
+      const json body = body_of(req);
+      const auto at = [&](const char* key) {
+        if (!body.contains(key) || !body[key].is_number_unsigned())
+          throw Error(ErrorCode::kUsage, "must be a whole number >= 0", Place{.option = key});
+        return body[key].get<std::size_t>();
+      };
+      reply(res, 200, drag_influence(session, at("row"), at("index")));
+    });
+  });
   // Drops a full search under way that a drag made stale (a rest's, the hold's search).
   http.Post("/api/cancel", [this](const httplib::Request&, httplib::Response& res) {
     reply(res, 200, json{{"cancelled", search.cancel()}});
