@@ -128,7 +128,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     chunk read by its worker. The points of a row are consecutive and in order, the rows in
     order, numbered 0 ... M-1 (a row may span chunks).
     tol / tol_rel: T, as sfit.fit (default 1e-3 of the bounding-box diagonal).
-    parameters: "uniform" (default) or "paper". counts: (nu, nv) to fit at, no search.
+    parameters: "uniform" (default), "paper" or "geometric" (open rows only; DaskFit.v is
+    then None: v is per point and stays on the workers). counts: (nu, nv) to fit at, no search.
     split_every: the tree reduction's fan-in. progress: distributed.progress() per pass.
     sample_points: above this many points the counts are searched on every k-th row (about
     this many points; kept by each chunk's worker from the statistics' pass), then verified
@@ -151,9 +152,12 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         raise _error("usage", f"closed: '{closed}' is not one of u, v, uv, none",
                      option="closed")
     cu, cv = "u" in closed, "v" in closed
-    if parameters not in ("uniform", "paper"):
-        raise _error("usage", f"parameters: '{parameters}' is not one of uniform, paper "
-                     "(the rules a distributed fit reproduces exactly)", option="parameters")
+    if parameters not in ("uniform", "paper", "geometric"):
+        raise _error("usage", f"parameters: '{parameters}' is not one of uniform, paper, "
+                     "geometric (the rules a distributed fit reproduces)", option="parameters")
+    if parameters == "geometric" and (cu or cv):
+        raise _error("usage", "parameters geometric: open rows, open across only in sfit.dask "
+                     "(closed rows take the swept axis of the in-memory fit)", option="closed")
     if tol is not None and tol_rel is not None:
         raise _error("usage", "give tol or tol_rel, not both", option="tol_rel")
     run = _Runner(progress)
@@ -163,7 +167,7 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     # the same pass, each chunk's points of every step-th row kept on its worker for the search.
     blocks = list(X.to_delayed().ravel())
     step_n = 1
-    if counts is None and X.shape[0] > sample_points:
+    if counts is None and X.shape[0] > sample_points and parameters != "geometric":
         step_n = -(-X.shape[0] // sample_points)
     firsts = None
     if step_n == 1:
@@ -222,6 +226,9 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     work = [(b, info) for b, info in zip(blocks, infos) if info is not None]
     if firsts is not None:
         firsts = [f for f, info in zip(firsts, infos) if info is not None]
+    if parameters == "geometric":
+        return _geometric(run, work, centre, box_min, box_max, T, roundoff, du, dv,
+                          split_every, counts, n_points, M, row_sizes, t0)
     spec = (du, dv, cu, cv, parameters)
     pairs = []
     max_u = max(du + 1, int(row_sizes.max()))
@@ -365,6 +372,31 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         "roundoff": roundoff, "seconds": time.perf_counter() - t0,
     }
     return DaskFit(surface, report, v, row_sizes, pairs)
+
+
+def _geometric(run, work, centre, box_min, box_max, T, roundoff, du, dv, split_every, counts,
+               n_points, M, row_sizes, t0):
+    """fit() at parameters "geometric" (_dask_geometric.py): no sample of rows (the search
+    probes every point); the per-point parameters stay on the workers."""
+    import dask
+
+    from ._dask_geometric import GeometricRunner, fit_geometric
+
+    chunks = [dask.delayed(_rows_sample, pure=True)(b, info, 1) for b, info in work]
+    runner = GeometricRunner(run, chunks, centre, box_min, box_max, T, roundoff,
+                             (du, dv, False, False), split_every, MAX_RESULT_BYTES)
+    control, entries, pairs = fit_geometric(runner, counts, n_points, M,
+                                            int(row_sizes.max()))
+    nu, nv = entries["control_points"]
+    surface = _sfit._surface_from_control(control, du, dv, False, False, centre)
+    report = {
+        "points": n_points, "rows": M, "tolerance": T.tolist(), "degree": [du, dv],
+        "closed": [False, False], "parametrization": "geometric",
+        "method": "dask least squares (scattered, smoothness term)", "pairs_tried": len(pairs),
+        "chunks": len(work), "rows_step": 1,
+        "full_passes": sum(p["rows_step"] == 1 for p in run.log), "passes": run.log,
+        "roundoff": roundoff, "seconds": time.perf_counter() - t0, **entries}
+    return DaskFit(surface, report, None, row_sizes, pairs)
 
 
 def in_memory_fit(rows, counts, tol, degree=3, degree_u=None, degree_v=None, closed="",
