@@ -225,7 +225,7 @@ class GeometricRunner:
             self.pairs.append({"counts": [nu, nv], "holds": a["holds"], "rows_step": 1,
                                "max_deviation": a["dev"].tolist(), "guard": guard,
                                "smoothing": w})
-            if holds:
+            if holds and guard != "far from the data":  # held, or failed only by a fold
                 return a
             if a["ratio"] > R["smoothing_reach"] and w <= R["smoothing"]:
                 return a
