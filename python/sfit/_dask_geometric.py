@@ -11,8 +11,9 @@ Passes over the points (each chunk read by its worker):
   positions  each point's position along and across the plane; min/max reduced; the
              fractions (u, v in [0, 1]) made from them stay on the workers (persisted)
   per round  the scattered normal equations at (nu, nv) (band + right-hand sides, summed by
-             Dask's tree reduction), solved on the client with the smoothness term, then the
-             check (max-reduced with the knot spans the points cover)
+             Dask's tree reduction), solved on the client with the smoothness term at both
+             weights the library may use, then one check of both (max-reduced with the knot
+             spans the points cover)
   correction each point's (u, v) moved to its closest point on the fit, on its worker.
 Only sums, the control points and the verdicts travel; the per-point parameters never do.
 """
@@ -96,8 +97,9 @@ def _partial(chunk, centre, fuv, nu, nv, spec):
     return _sfit._geometric_partial(chunk.block, centre, fuv, nu, nv, *spec)
 
 
-def _check(chunk, centre, fuv, control, spec, tol, roundoff):
-    return _sfit._geometric_check(chunk.block, centre, fuv, control, *spec, tol, roundoff)
+def _check(chunk, centre, fuv, controls, spec, tol, roundoff):
+    return np.concatenate([_sfit._geometric_check(chunk.block, centre, fuv, c, *spec, tol,
+                                                  roundoff) for c in controls])
 
 
 def _project(chunk, centre, fuv, control, spec):
@@ -185,34 +187,47 @@ class GeometricRunner:
                                                                self.spec)
                              for c, s in zip(self.chunks, states)], (size,), "sum")
 
-    def check(self, states, control):
+    def check(self, states, controls):
+        """One pass: every chunk checks its points against each surface of `controls` (the
+        same counts) and returns, per surface, [not within, not near, worst ratio, max |S - D|
+        per axis, covered knot spans]; max-reduced."""
         import dask
 
-        nu, nv = control.shape[:2]
+        nu, nv = controls[0].shape[:2]
         du, dv, cu, cv = self.spec
-        cells = (nu if cu else nu - du) * (nv if cv else nv - dv)
-        c = dask.delayed(control, pure=True) if control.nbytes > (1 << 20) else control
+        size = 6 + (nu if cu else nu - du) * (nv if cv else nv - dv)
+        nbytes = sum(c.nbytes for c in controls)
+        c = dask.delayed(controls, pure=True) if nbytes > (1 << 20) else controls
         out = self._reduce(f"check {nu} x {nv}",
                            [dask.delayed(_check, pure=True)(ch, self.centre, s, c, self.spec,
                                                             self.T, self.roundoff)
-                            for ch, s in zip(self.chunks, states)], (6 + cells,), "max")
-        return out
+                            for ch, s in zip(self.chunks, states)], (size * len(controls),),
+                           "max")
+        return [out[k * size:(k + 1) * size] for k in range(len(controls))]
 
     def attempt(self, states, nu, nv):
         """The library's attempt() at (nu, nv): the smoothness weight from its default,
-        lowered once where T was missed by at most smoothing_reach; holds: every point within
+        lowered (once) where T was missed by at most smoothing_reach; holds: every point within
         T (per axis and the ellipsoid), the surface near the data where covered and calm
         elsewhere, and no fold. One pass of normal equations (they do not depend on the
-        weight), one check pass per weight."""
+        weight); the surfaces of both weights solved here and checked in one pass (the second
+        is used only where the library would make it)."""
         R = rules()
         flat = self.normal_equations(states, nu, nv)
-        a = None
+        weights, controls = [], []
         w = R["smoothing"]
         while w >= R["smoothing"] * R["smoothing_lower"]:
             control = _sfit._geometric_solve(flat, nu, nv, w, *self.spec)
             if control is None:
-                return a
-            out = self.check(states, control)
+                break
+            weights.append(w)
+            controls.append(control)
+            w *= R["smoothing_lower"]
+        if not controls:
+            return None
+        checks = self.check(states, controls)
+        a = None
+        for w, control, out in zip(weights, controls, checks):
             holds = out[0] == 0 and out[1] == 0
             guard = None
             if holds:
@@ -229,7 +244,6 @@ class GeometricRunner:
                 return a
             if a["ratio"] > R["smoothing_reach"] and w <= R["smoothing"]:
                 return a
-            w *= R["smoothing_lower"]
         return a
 
     def at_counts(self, base, nu, nv):
