@@ -18,6 +18,8 @@ Passes over the points (each chunk read by its worker):
 Only sums, the control points and the verdicts travel; the per-point parameters never do.
 """
 
+import time
+
 import numpy as np
 
 from . import _sfit
@@ -134,7 +136,6 @@ class GeometricRunner:
         self.pairs = []
 
     def _reduce(self, what, tasks, size, how):
-        import dask
         import dask.array as da
 
         parts = [da.from_delayed(t, shape=size, dtype=float) for t in tasks]
@@ -324,3 +325,28 @@ def fit_geometric(runner, counts, n_points, M, longest):
               "smoothing": at["smoothing"], "guard": at["guard"],
               "partial_bytes": 8 * _sfit._geometric_partial_size(nu, nv, du, dv)}
     return at["control"], report, runner.pairs
+
+
+def fit_after_statistics(run, work, centre, box_min, box_max, T, roundoff, du, dv, split_every,
+                         counts, n_points, M, row_sizes, t0):
+    """sfit.dask.fit() at parameters "geometric" after its statistics' pass: no sample of rows
+    (the search probes every point); the per-point parameters stay on the workers."""
+    import dask
+
+    from ._dask_tasks import _rows_sample
+    from .dask import MAX_RESULT_BYTES, DaskFit
+
+    chunks = [dask.delayed(_rows_sample, pure=True)(b, info, 1) for b, info in work]
+    runner = GeometricRunner(run, chunks, centre, box_min, box_max, T, roundoff,
+                             (du, dv, False, False), split_every, MAX_RESULT_BYTES)
+    control, entries, pairs = fit_geometric(runner, counts, n_points, M,
+                                            int(row_sizes.max()))
+    surface = _sfit._surface_from_control(control, du, dv, False, False, centre)
+    report = {
+        "points": n_points, "rows": M, "tolerance": T.tolist(), "degree": [du, dv],
+        "closed": [False, False], "parametrization": "geometric",
+        "method": "dask least squares (scattered, smoothness term)", "pairs_tried": len(pairs),
+        "chunks": len(work), "rows_step": 1,
+        "full_passes": sum(p["rows_step"] == 1 for p in run.log), "passes": run.log,
+        "roundoff": roundoff, "seconds": time.perf_counter() - t0, **entries}
+    return DaskFit(surface, report, None, row_sizes, pairs)

@@ -19,7 +19,9 @@ drives rounds of this. The result equals the in-memory fit at the same counts
 Points: rows of a scan numbered 0 ... M-1, the points of each row stored consecutively and in
 order along the row, the rows in order (a row may span chunks). Parameters: the uniform rule
 (equal steps in the point's index along each row, equal steps across the rows) or the paper's;
-both need only each row's point count, gathered in a first pass.
+both need only each row's point count, gathered in a first pass. Or the geometric rule
+(_dask_geometric.py: each point's (u, v) from a base plane, corrected by projection onto the
+fit; the per-point parameters stay on the workers).
 """
 
 import math
@@ -227,8 +229,9 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     if firsts is not None:
         firsts = [f for f, info in zip(firsts, infos) if info is not None]
     if parameters == "geometric":
-        return _geometric(run, work, centre, box_min, box_max, T, roundoff, du, dv,
-                          split_every, counts, n_points, M, row_sizes, t0)
+        from ._dask_geometric import fit_after_statistics
+        return fit_after_statistics(run, work, centre, box_min, box_max, T, roundoff, du, dv,
+                                    split_every, counts, n_points, M, row_sizes, t0)
     spec = (du, dv, cu, cv, parameters)
     pairs = []
     max_u = max(du + 1, int(row_sizes.max()))
@@ -372,31 +375,6 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         "roundoff": roundoff, "seconds": time.perf_counter() - t0,
     }
     return DaskFit(surface, report, v, row_sizes, pairs)
-
-
-def _geometric(run, work, centre, box_min, box_max, T, roundoff, du, dv, split_every, counts,
-               n_points, M, row_sizes, t0):
-    """fit() at parameters "geometric" (_dask_geometric.py): no sample of rows (the search
-    probes every point); the per-point parameters stay on the workers."""
-    import dask
-
-    from ._dask_geometric import GeometricRunner, fit_geometric
-
-    chunks = [dask.delayed(_rows_sample, pure=True)(b, info, 1) for b, info in work]
-    runner = GeometricRunner(run, chunks, centre, box_min, box_max, T, roundoff,
-                             (du, dv, False, False), split_every, MAX_RESULT_BYTES)
-    control, entries, pairs = fit_geometric(runner, counts, n_points, M,
-                                            int(row_sizes.max()))
-    nu, nv = entries["control_points"]
-    surface = _sfit._surface_from_control(control, du, dv, False, False, centre)
-    report = {
-        "points": n_points, "rows": M, "tolerance": T.tolist(), "degree": [du, dv],
-        "closed": [False, False], "parametrization": "geometric",
-        "method": "dask least squares (scattered, smoothness term)", "pairs_tried": len(pairs),
-        "chunks": len(work), "rows_step": 1,
-        "full_passes": sum(p["rows_step"] == 1 for p in run.log), "passes": run.log,
-        "roundoff": roundoff, "seconds": time.perf_counter() - t0, **entries}
-    return DaskFit(surface, report, None, row_sizes, pairs)
 
 
 def in_memory_fit(rows, counts, tol, degree=3, degree_u=None, degree_v=None, closed="",
