@@ -381,7 +381,9 @@ def in_memory_fit(rows, counts, tol, degree=3, degree_u=None, degree_v=None, clo
                   parameters="uniform", threads=0):
     """The library's in-memory least-squares fit of `rows` (a list of (N_j, 3) arrays) at
     exactly `counts` (FitOptions::counts, least squares, one rule, seams and orientation as
-    given): an sfit.Fit, what fit() equals for the same points."""
+    given): an sfit.Fit, what fit() equals for the same points. parameters: "uniform",
+    "paper" or "geometric" (the library's geometric_at_counts(): base plane, the smoothness
+    weight lowered where needed, corrections while the worst deviation falls)."""
     du = degree if degree_u is None else degree_u
     dv = degree if degree_v is None else degree_v
     return _sfit._fit_at_counts(rows, int(counts[0]), int(counts[1]), tol, du, dv,
