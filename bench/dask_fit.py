@@ -108,6 +108,7 @@ def main(argv=None):
     p.add_argument("--parameters", default="uniform", choices=["uniform", "paper", "geometric"],
                    help="the parameter rule (geometric: each point's (u, v) from a base plane, "
                    "corrected by projection; the per-point parameters stay on the workers)")
+    p.add_argument("--counts", help="NU,NV: fit at these counts (one round, no search)")
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--memory-limit", default="2GB", help="per worker")
     p.add_argument("--threads", action="store_true",
@@ -150,7 +151,8 @@ def main(argv=None):
         cpu0 = client.run(cpu_seconds)
         client_cpu0 = cpu_seconds()
         t = time.perf_counter()
-        f = sfit.dask.fit(x, tol_rel=a.tol_rel, parameters=a.parameters)
+        counts = None if a.counts is None else [int(c) for c in a.counts.split(",")]
+        f = sfit.dask.fit(x, tol_rel=a.tol_rel, parameters=a.parameters, counts=counts)
         out["dask_seconds"] = time.perf_counter() - t
         out["client_cpu_seconds"] = cpu_seconds() - client_cpu0
         cpu1 = client.run(cpu_seconds)
