@@ -12,6 +12,8 @@ of those --reference points at the same counts, which must equal it to 1e-10 rel
 
     PYTHONPATH=build/python /usr/bin/python3 bench/dask_fit.py --points 1e8 --reference 1e7
     PYTHONPATH=build/python /usr/bin/python3 bench/dask_fit.py --points 1e7 --reference 1e6
+    PYTHONPATH=build/python /usr/bin/python3 bench/dask_fit.py --points 1e7 --reference 1e7 \
+        --parameters geometric
 
 Memory per worker: the peak resident set of each worker process (getrusage, run on the
 workers); the client's: the peak of this process (VmHWM) before and after the in-memory fit.
@@ -103,6 +105,10 @@ def main(argv=None):
     p.add_argument("--reference", type=float, default=1e7, help="points of the in-memory fit")
     p.add_argument("--chunk-points", type=float, default=2e6)
     p.add_argument("--tol-rel", type=float, default=1e-3)
+    p.add_argument("--parameters", default="uniform", choices=["uniform", "paper", "geometric"],
+                   help="the parameter rule (geometric: each point's (u, v) from a base plane, "
+                   "corrected by projection; the per-point parameters stay on the workers)")
+    p.add_argument("--counts", help="NU,NV: fit at these counts (one round, no search)")
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--memory-limit", default="2GB", help="per worker")
     p.add_argument("--threads", action="store_true",
@@ -136,7 +142,8 @@ def main(argv=None):
                                threads_per_worker=a.workers if a.threads else 1, processes=True,
                                memory_limit=a.memory_limit, dashboard_address=":0")
         client = Client(cluster)
-    out = {"points": n, "reference": ref, "chunk_points": chunk, "workers": a.workers,
+    out = {"points": n, "reference": ref, "parameters": a.parameters, "chunk_points": chunk,
+           "workers": a.workers,
            "threads_in_one_worker": a.threads,
            "memory_limit_per_worker": a.memory_limit, "load_before": os.getloadavg()}
     try:
@@ -144,7 +151,8 @@ def main(argv=None):
         cpu0 = client.run(cpu_seconds)
         client_cpu0 = cpu_seconds()
         t = time.perf_counter()
-        f = sfit.dask.fit(x, tol_rel=a.tol_rel)
+        counts = None if a.counts is None else [int(c) for c in a.counts.split(",")]
+        f = sfit.dask.fit(x, tol_rel=a.tol_rel, parameters=a.parameters, counts=counts)
         out["dask_seconds"] = time.perf_counter() - t
         out["client_cpu_seconds"] = cpu_seconds() - client_cpu0
         cpu1 = client.run(cpu_seconds)
@@ -174,12 +182,16 @@ def main(argv=None):
         out["reference_generate_seconds"] = time.perf_counter() - t
         t = time.perf_counter()
         cpu = cpu_seconds()
-        mem = sfit.dask.in_memory_fit(rows, r["control_points"], tol=r["tolerance"])
+        mem = sfit.dask.in_memory_fit(rows, r["control_points"], tol=r["tolerance"],
+                                      parameters=a.parameters)
+        out["in_memory_within_tolerance"] = mem.report["within_tolerance"]
         out["in_memory_seconds"] = time.perf_counter() - t
         out["in_memory_cpu_seconds"] = cpu_seconds() - cpu
         out["client_peak_mb_after_in_memory"] = peak_mb()
         t = time.perf_counter()
-        same = sfit.dask.fit(xr, tol=r["tolerance"], counts=r["control_points"])
+        same = sfit.dask.fit(xr, tol=r["tolerance"], counts=r["control_points"],
+                             parameters=a.parameters)
+        out["dask_reference_passes"] = same.report["full_passes"]
         out["dask_reference_one_round_seconds"] = time.perf_counter() - t
         out["reference_relative_difference"] = float(
             np.max(np.abs(same.surface.control_points - mem.surface.control_points)) /

@@ -19,7 +19,9 @@ drives rounds of this. The result equals the in-memory fit at the same counts
 Points: rows of a scan numbered 0 ... M-1, the points of each row stored consecutively and in
 order along the row, the rows in order (a row may span chunks). Parameters: the uniform rule
 (equal steps in the point's index along each row, equal steps across the rows) or the paper's;
-both need only each row's point count, gathered in a first pass.
+both need only each row's point count, gathered in a first pass. Or the geometric rule
+(_dask_geometric.py: each point's (u, v) from a base plane, corrected by projection onto the
+fit; the per-point parameters stay on the workers).
 """
 
 import math
@@ -128,7 +130,8 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     chunk read by its worker. The points of a row are consecutive and in order, the rows in
     order, numbered 0 ... M-1 (a row may span chunks).
     tol / tol_rel: T, as sfit.fit (default 1e-3 of the bounding-box diagonal).
-    parameters: "uniform" (default) or "paper". counts: (nu, nv) to fit at, no search.
+    parameters: "uniform" (default), "paper" or "geometric" (open rows only; DaskFit.v is
+    then None: v is per point and stays on the workers). counts: (nu, nv) to fit at, no search.
     split_every: the tree reduction's fan-in. progress: distributed.progress() per pass.
     sample_points: above this many points the counts are searched on every k-th row (about
     this many points; kept by each chunk's worker from the statistics' pass), then verified
@@ -151,9 +154,12 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
         raise _error("usage", f"closed: '{closed}' is not one of u, v, uv, none",
                      option="closed")
     cu, cv = "u" in closed, "v" in closed
-    if parameters not in ("uniform", "paper"):
-        raise _error("usage", f"parameters: '{parameters}' is not one of uniform, paper "
-                     "(the rules a distributed fit reproduces exactly)", option="parameters")
+    if parameters not in ("uniform", "paper", "geometric"):
+        raise _error("usage", f"parameters: '{parameters}' is not one of uniform, paper, "
+                     "geometric (the rules a distributed fit reproduces)", option="parameters")
+    if parameters == "geometric" and (cu or cv):
+        raise _error("usage", "parameters geometric: open rows, open across only in sfit.dask "
+                     "(closed rows take the swept axis of the in-memory fit)", option="closed")
     if tol is not None and tol_rel is not None:
         raise _error("usage", "give tol or tol_rel, not both", option="tol_rel")
     run = _Runner(progress)
@@ -163,7 +169,7 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     # the same pass, each chunk's points of every step-th row kept on its worker for the search.
     blocks = list(X.to_delayed().ravel())
     step_n = 1
-    if counts is None and X.shape[0] > sample_points:
+    if counts is None and X.shape[0] > sample_points and parameters != "geometric":
         step_n = -(-X.shape[0] // sample_points)
     firsts = None
     if step_n == 1:
@@ -222,6 +228,10 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     work = [(b, info) for b, info in zip(blocks, infos) if info is not None]
     if firsts is not None:
         firsts = [f for f, info in zip(firsts, infos) if info is not None]
+    if parameters == "geometric":
+        from ._dask_geometric import fit_after_statistics
+        return fit_after_statistics(run, work, centre, box_min, box_max, T, roundoff, du, dv,
+                                    split_every, counts, n_points, M, row_sizes, t0)
     spec = (du, dv, cu, cv, parameters)
     pairs = []
     max_u = max(du + 1, int(row_sizes.max()))
@@ -371,7 +381,9 @@ def in_memory_fit(rows, counts, tol, degree=3, degree_u=None, degree_v=None, clo
                   parameters="uniform", threads=0):
     """The library's in-memory least-squares fit of `rows` (a list of (N_j, 3) arrays) at
     exactly `counts` (FitOptions::counts, least squares, one rule, seams and orientation as
-    given): an sfit.Fit, what fit() equals for the same points."""
+    given): an sfit.Fit, what fit() equals for the same points. parameters: "uniform",
+    "paper" or "geometric" (the library's geometric_at_counts(): base plane, the smoothness
+    weight lowered where needed, corrections while the worst deviation falls)."""
     du = degree if degree_u is None else degree_u
     dv = degree if degree_v is None else degree_v
     return _sfit._fit_at_counts(rows, int(counts[0]), int(counts[1]), tol, du, dv,

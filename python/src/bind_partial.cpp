@@ -333,7 +333,8 @@ void bind_partial(py::module_& m) {
         o.closed_u = closed_u;
         o.closed_v = closed_v;
         o.tolerance = per_axis_from(tol, "tol");
-        o.parametrization = rule_of(rule);
+        // Also the geometric rule (the library's fixed-count path: geometric_at_counts()).
+        o.parametrization = rule == "geometric" ? Parametrization::kGeometric : rule_of(rule);
         o.counts = std::array<int, 2>{nu, nv};
         o.norm = FitNorm::kL2;
         o.seam = SeamMode::kKeep;
@@ -350,7 +351,8 @@ void bind_partial(py::module_& m) {
       py::arg("degree_v") = 3, py::arg("closed_u") = false, py::arg("closed_v") = false,
       py::arg("parameters") = "uniform", py::arg("threads") = 0,
       "The in-memory least-squares fit at exactly (nu, nv) (FitOptions::counts, least "
-      "squares, one rule, seams and orientation kept): what sfit.dask.fit() equals.");
+      "squares, one rule (uniform, paper or geometric), seams and orientation kept): what "
+      "sfit.dask.fit() equals.");
 }
 
 }  // namespace sfit::python

@@ -35,6 +35,7 @@ void bind_surface(py::module_& m);
 void bind_fit(py::module_& m);
 void bind_curve(py::module_& m);
 void bind_io(py::module_& m);
+void bind_geometric(py::module_& m);
 void bind_options(py::module_& m);  // sfit.fit_options() (options.cpp)
 void bind_partial(py::module_& m);  // sfit.dask's chunk pieces (bind_partial.cpp)
 

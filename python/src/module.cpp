@@ -20,4 +20,5 @@ PYBIND11_MODULE(_sfit, m) {
   sfit::python::bind_eval_module(m);
   sfit::python::bind_options(m);
   sfit::python::bind_partial(m);
+  sfit::python::bind_geometric(m);
 }

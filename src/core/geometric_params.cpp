@@ -69,30 +69,18 @@ std::optional<Fractions> open_sheet(const Rows& rows) {
     const Vector3d d = p - c;
     cov += d * d.transpose();
   }
-  Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
-  if (es.info() != Eigen::Success || !(es.eigenvalues()[1] > 0)) return std::nullopt;
-  const Vector3d normal = es.eigenvectors().col(0);
   Vector3d along = Vector3d::Zero();
   for (std::size_t j = 0; j < rows.size(); ++j) {
     const auto r = rows[j];
     if (r.size() >= 2) along += r.back() - r.front();
   }
-  along -= along.dot(normal) * normal;
-  if (!(along.norm() > 0)) along = es.eigenvectors().col(2);
-  along.normalize();
-  Vector3d across = normal.cross(along);
-  // v grows with the rows' order.
-  const Vector3d first = edge_centroid(rows[0], false),
-                 last = edge_centroid(rows[rows.size() - 1], false);
-  if ((last - first).dot(across) < 0) across = -across;
+  const std::optional<SheetFrame> frame = sheet_frame(c, cov, along, edge_centroid(rows[0], false),
+                                                      edge_centroid(rows[rows.size() - 1], false));
+  if (!frame) return std::nullopt;
   Fractions f;
   f.u.resize(n);
   f.v.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const Vector3d d = pts[k] - c;
-    f.u[k] = d.dot(along);
-    f.v[k] = d.dot(across);
-  }
+  sheet_positions(*frame, pts, f.u, f.v);
   scale_to_unit(f.u);
   scale_to_unit(f.v);
   return f;
@@ -169,6 +157,29 @@ std::optional<Fractions> swept_axis(const Rows& rows) {
 }
 
 }  // namespace
+
+std::optional<SheetFrame> sheet_frame(const Point& mean, const Eigen::Matrix3d& cov, Point along,
+                                      const Point& first, const Point& last) {
+  Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
+  if (es.info() != Eigen::Success || !(es.eigenvalues()[1] > 0)) return std::nullopt;
+  const Vector3d normal = es.eigenvectors().col(0);
+  along -= along.dot(normal) * normal;
+  if (!(along.norm() > 0)) along = es.eigenvectors().col(2);
+  along.normalize();
+  Vector3d across = normal.cross(along);
+  // v grows with the rows' order.
+  if ((last - first).dot(across) < 0) across = -across;
+  return SheetFrame{mean, along, across};
+}
+
+void sheet_positions(const SheetFrame& f, std::span<const Point> pts, std::span<double> u,
+                     std::span<double> v) {
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const Vector3d d = pts[k] - f.c;
+    u[k] = d.dot(f.along);
+    v[k] = d.dot(f.across);
+  }
+}
 
 std::optional<Fractions> base_surface_fractions(const Rows& rows, bool closed_u, bool closed_v) {
   if (rows.size() < 2 || closed_v) return std::nullopt;

@@ -2,7 +2,9 @@
 // onto a base surface, and their correction by projection onto a fit (Hoschek). Private.
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "sfit/rows.h"
@@ -14,6 +16,22 @@ namespace sfit::detail {
 struct Fractions {
   std::vector<double> u, v;
 };
+
+/// The open sheet's base plane (base_surface_fractions()) from its statistics: the points'
+/// mean and their scatter about it (sum of d d^T), the rows' directions summed (each row's
+/// last point minus its first), and the edge centroids of the first and the last row. u
+/// runs along the rows' mean direction in the plane, v across it, growing with the rows'
+/// order. nullopt where the points span no plane. A distributed fit gathers the statistics
+/// over chunks and places each chunk's points with sheet_positions().
+struct SheetFrame {
+  Point c, along, across;
+};
+std::optional<SheetFrame> sheet_frame(const Point& mean, const Eigen::Matrix3d& cov, Point along,
+                                      const Point& first, const Point& last);
+/// Each point's position along and across the sheet (before the scaling to [0, 1] over the
+/// data: (t - min) / (max - min), clamped).
+void sheet_positions(const SheetFrame& f, std::span<const Point> pts, std::span<double> u,
+                     std::span<double> v);
 
 /// The base surface's parameters, from the data alone:
 /// - open rows, open across: the best plane of all points (least squares); u along the rows'

@@ -19,16 +19,9 @@ namespace {
 // Above this many points the pairs are searched on a sample of the rows' points (every
 // step-th of each row, and its last), then verified on all.
 constexpr std::size_t kSamplePoints = 20000;
-// Gauss-Newton steps per point and round.
-constexpr int kNewtonSteps = 3;
 // Pairs with more unknowns than this, or whose factorisation costs more flops, are not tried.
 constexpr long kMaxUnknowns = kGeometricMaxUnknowns;
 constexpr double kMaxCost = 4e7;
-// Where a pair misses T by at most this factor, the smoothness weight is lowered (by
-// kSmoothingLower) and the pair refitted once: the term may be what misses. The lower weight
-// still decides the spans without data (as any positive weight does) but pulls far less.
-constexpr double kSmoothingReach = 1.25;
-constexpr double kSmoothingLower = 1e-4;
 
 struct Sample {
   Rows rows;
@@ -172,7 +165,8 @@ PairRange range_for(const ScatteredProblem& sp, const Rows& rows) {
                    }};
 }
 
-// Fractions of a surface's parameters (u, v at its counts).
+}  // namespace
+
 void to_fractions(const Surface& s, const std::vector<double>& u, const std::vector<double>& v,
                   std::vector<double>& fu, std::vector<double>& fv) {
   fu.resize(u.size());
@@ -184,8 +178,6 @@ void to_fractions(const Surface& s, const std::vector<double>& u, const std::vec
     fv[k] = v[k] / ve;
   }
 }
-
-}  // namespace
 
 double geometric_fold(const Surface& s) {
   const int n = 2 * s.count_v + 1;

@@ -17,6 +17,15 @@ namespace sfit::detail {
 /// Rounds of parameter correction (each: project, refit, descend) while the count falls.
 inline constexpr int kCorrectionRounds = 3;
 
+/// Gauss-Newton steps per point and round of parameter correction (project_parameters()).
+inline constexpr int kNewtonSteps = 3;
+
+/// Where a pair misses T by at most this factor, the smoothness weight is lowered (by
+/// kSmoothingLower) and the pair refitted once: the term may be what misses. The lower weight
+/// still decides the spans without data (as any positive weight does) but pulls far less.
+inline constexpr double kSmoothingReach = 1.25;
+inline constexpr double kSmoothingLower = 1e-4;
+
 /// A surface of the rule (centred) with its points' parameters at its counts.
 struct GeometricFit {
   Surface surface;
@@ -71,6 +80,11 @@ std::vector<char> covered_spans(const Surface& s, std::span<const double> u,
 /// decides it.
 bool stays_near_where_covered(const Surface& s, std::span<const double> u,
                               std::span<const double> v, const BoundingBox& box);
+
+/// Fractions of the domain of parameters u, v at s's counts (a closed direction's end wrapped
+/// to 0): what a round of correction gives the next problem.
+void to_fractions(const Surface& s, const std::vector<double>& u, const std::vector<double>& v,
+                  std::vector<double>& fu, std::vector<double>& fv);
 
 /// The fold of a surface over evenly spaced columns (fold_measure()).
 double geometric_fold(const Surface& s);

@@ -53,13 +53,13 @@ double ScatteredProblem::cost(int nu, int nv) const {
   return 0.5 * static_cast<double>(nu) * nv * band * band;
 }
 
-bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) const {
-  const int p = spec_.degree_u, q = spec_.degree_v;
-  const bool cu = spec_.closed_u, cv = spec_.closed_v;
-  if (nu < min_u() || nv < min_v()) return false;
-  const int wu = 2 * p + 1, wv = 2 * q + 1, W = wu * wv;
+void scattered_add(const ScatteredSpec& spec, int nu, int nv, std::span<const Point> pts,
+                   std::span<const double> wts, std::span<const double> fu,
+                   std::span<const double> fv, std::vector<double>& band, std::vector<Point>& rhs) {
+  const int p = spec.degree_u, q = spec.degree_v;
+  const bool cu = spec.closed_u, cv = spec.closed_v;
+  const int wv = 2 * q + 1, W = (2 * p + 1) * wv;
   const int n_local = (p + 1) * (q + 1);
-  const std::size_t N = static_cast<std::size_t>(nu) * nv;
   // Offsets in the band store of local product (x, y): depends on the local indices only.
   std::vector<int> offset(static_cast<std::size_t>(n_local) * n_local);
   for (int x = 0; x < n_local; ++x)
@@ -67,6 +67,33 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) con
       offset[x * n_local + y] =
           (y / (q + 1) - x / (q + 1) + p) * wv + (y % (q + 1) - x % (q + 1) + q);
   const double eu = domain(p, nu, cu), ev = domain(q, nv, cv);
+  std::array<double, kMaxDegree + 1> bu, bv;
+  std::vector<double> w(n_local);
+  std::vector<std::size_t> idx(n_local);
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const int f0 = eval_basis(p, nu, cu, fu[k] * eu, bu.data());
+    const int f1 = eval_basis(q, nv, cv, fv[k] * ev, bv.data());
+    const double weight = wts.empty() ? 1.0 : wts[k];
+    for (int a = 0; a <= p; ++a)
+      for (int c = 0; c <= q; ++c) {
+        const int x = a * (q + 1) + c;
+        w[x] = bu[a] * bv[c];
+        idx[x] = static_cast<std::size_t>(wrap_index(f0 + a, nu)) * nv + wrap_index(f1 + c, nv);
+      }
+    for (int x = 0; x < n_local; ++x) {
+      const double wx = weight * w[x];
+      double* row = band.data() + idx[x] * W;
+      const int* off = offset.data() + x * n_local;
+      for (int y = 0; y < n_local; ++y) row[off[y]] += wx * w[y];
+      rhs[idx[x]] += wx * pts[k];
+    }
+  }
+}
+
+bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) const {
+  if (nu < min_u() || nv < min_v()) return false;
+  const int W = (2 * spec_.degree_u + 1) * (2 * spec_.degree_v + 1);
+  const std::size_t N = static_cast<std::size_t>(nu) * nv;
   const std::vector<Point>& pts = rows_.points();
   const std::vector<double>& wts = rows_.weights();
   const std::size_t n = pts.size(), blocks = (n + kBlock - 1) / kBlock;
@@ -82,27 +109,12 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) con
     Part& pt = part[b];
     pt.band.assign(N * W, 0.0);
     pt.rhs.assign(N, Point::Zero());
-    std::array<double, kMaxDegree + 1> bu, bv;
-    std::vector<double> w(n_local);
-    std::vector<std::size_t> idx(n_local);
-    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
-      const int fu = eval_basis(p, nu, cu, fu_[k] * eu, bu.data());
-      const int fv = eval_basis(q, nv, cv, fv_[k] * ev, bv.data());
-      const double weight = wts.empty() ? 1.0 : wts[k];
-      for (int a = 0; a <= p; ++a)
-        for (int c = 0; c <= q; ++c) {
-          const int x = a * (q + 1) + c;
-          w[x] = bu[a] * bv[c];
-          idx[x] = static_cast<std::size_t>(wrap_index(fu + a, nu)) * nv + wrap_index(fv + c, nv);
-        }
-      for (int x = 0; x < n_local; ++x) {
-        const double wx = weight * w[x];
-        double* row = pt.band.data() + idx[x] * W;
-        const int* off = offset.data() + x * n_local;
-        for (int y = 0; y < n_local; ++y) row[off[y]] += wx * w[y];
-        pt.rhs[idx[x]] += wx * pts[k];
-      }
-    }
+    const std::size_t k0 = b * kBlock, k1 = std::min(n, (b + 1) * kBlock);
+    const std::span<const double> wb =
+        wts.empty() ? std::span<const double>() : std::span<const double>(wts).subspan(k0, k1 - k0);
+    scattered_add(spec_, nu, nv, std::span<const Point>(pts).subspan(k0, k1 - k0), wb,
+                  std::span<const double>(fu_).subspan(k0, k1 - k0),
+                  std::span<const double>(fv_).subspan(k0, k1 - k0), pt.band, pt.rhs);
   };
   // Memory: a store per block would be blocks x N x W; merge as we go in fixed groups.
   std::vector<double> band(N * W, 0.0);
@@ -117,6 +129,16 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) con
       pt = Part{};
     }
   }
+  return scattered_solve(spec_, nu, nv, band, rhs, smoothing, out);
+}
+
+bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,
+                     const std::vector<Point>& rhs, double smoothing, Surface& out) {
+  const int p = spec.degree_u, q = spec.degree_v;
+  const bool cu = spec.closed_u, cv = spec.closed_v;
+  const int wv = 2 * q + 1, W = (2 * p + 1) * wv;
+  const std::size_t N = static_cast<std::size_t>(nu) * nv;
+  if (band.size() != N * W || rhs.size() != N) return false;
   double trace = 0;
   const int centre = p * wv + q;
   for (std::size_t I = 0; I < N; ++I) trace += band[I * W + centre];

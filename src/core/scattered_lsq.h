@@ -21,6 +21,7 @@
 //          pulls the fit; the caller checks every point and lowers lambda where T was missed.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "sfit/rows.h"
@@ -36,6 +37,18 @@ struct ScatteredSpec {
   bool closed_u = false, closed_v = false;
   int threads = 1;
 };
+
+/// The data term of points `pts` (centred; weights `wts` or none) at fractions `fu`, `fv` and
+/// counts (nu, nv), added into `band` (nu nv x (2p+1)(2q+1), u-major, each control point's
+/// neighbours) and `rhs` (nu nv): ScatteredProblem::solve()'s assembly of one block of points
+/// (also one chunk of a distributed fit's points: the sums over blocks add up).
+void scattered_add(const ScatteredSpec& spec, int nu, int nv, std::span<const Point> pts,
+                   std::span<const double> wts, std::span<const double> fu,
+                   std::span<const double> fv, std::vector<double>& band, std::vector<Point>& rhs);
+/// The surface of a summed data term (scattered_add()) plus the smoothness term of weight
+/// `smoothing` (relative), as ScatteredProblem::solve().
+bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,
+                     const std::vector<Point>& rhs, double smoothing, Surface& out);
 
 class ScatteredProblem {
  public:
