@@ -15,6 +15,21 @@ namespace sfit::detail {
 
 namespace {
 
+// The report of a fit at given counts: within_tolerance is the per-point check's (every point
+// within T per axis: the report's contract), whatever the search's further tests say; where
+// one of those fails the stop reason says which, as the search would not have taken it.
+// `guard`: failed_guard() of the centred surface.
+void report_given(FitResult& out, const PairVerdict& verdict, const DeviationCheck& c,
+                  const char* guard) {
+  out.report.stop_reason = "counts given";
+  out.report.within_tolerance = c.within;
+  if (verdict.holds || !c.within) return;
+  out.report.stop_reason +=
+      std::string("; the search would not take this surface: ") +
+      (guard ? std::string("its guard ") + guard + " fails"
+             : std::string("a point lies farther than T from it, the axes taken together"));
+}
+
 void check_counts(const FitOptions& o) {
   const auto& c = *o.counts;
   const int lo[2] = {o.degree_u + 1, o.degree_v + 1};
@@ -48,10 +63,10 @@ FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0,
                   Place{.option = "counts"}, {static_cast<double>(nu), static_cast<double>(nv)});
     DeviationCheck c;
     const PairVerdict verdict = fr.judge(g->surface, g->u, g->v, &c);
+    const char* guard = failed_guard(g->surface, fr.centred_box);
     FitResult out = assemble_geometric(fr, std::move(*g), c, o);
     out.report.pairs_tried = 1;
-    out.report.stop_reason = "counts given";
-    out.report.within_tolerance = verdict.holds;
+    report_given(out, verdict, c, guard);
     out.report.seconds = now() - t0;
     return out;
   }
@@ -100,14 +115,13 @@ FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0,
                 "no surface with " + std::to_string(nu) + " x " + std::to_string(nv) +
                     " control points: a knot span has no data",
                 Place{.option = "counts"}, {static_cast<double>(nu), static_cast<double>(nv)});
+  const char* guard = failed_guard(*best, fr.centred_box);
   FitResult out =
       assemble(fr, std::move(*best), std::move(best_u), std::move(best_v), best_check, o);
   out.report.parametrization = best_rule;
   out.report.norm = best_norm;
   out.report.pairs_tried = tried;
-  out.report.stop_reason = "counts given";
-  // A guard's failure makes the surface not hold, as in the search.
-  out.report.within_tolerance = best_verdict.holds;
+  report_given(out, best_verdict, best_check, guard);
   out.report.seconds = now() - t0;
   return out;
 }
