@@ -11,7 +11,9 @@
 
 namespace sfit {
 
-/// How the data points of a row (or the rows, across) get their parameters.
+/// How the data points of a row (or the rows, across) get their parameters: the built-in rules;
+/// a rule registered at run time has an id beyond these (docs/method.md 7.11), which
+/// to_string(), parse_parametrization() and normalized_positions() know while it is registered.
 enum class Parametrization {
   kPaper,        ///< docs/method.md 3: the Greville sequence read at the point's index (SFIT01)
   kUniform,      ///< docs/method.md 7.4: equal steps in the point's index, t = L j / (N-1)

@@ -23,7 +23,9 @@ namespace sfit {
 /// Deviations below this fraction of the data's size count as round-off (used at T = 0).
 inline constexpr double kRoundoffRelative = 1e-10;
 
-/// How the control-point counts are found (docs/control-points.md).
+/// How the control-point counts are found (docs/control-points.md): the built-in methods; a
+/// method registered at run time has an id beyond these (docs/method.md 7.11), which
+/// to_string() and parse_fit_method() know while it is registered.
 enum class FitMethod {
   /// Default: tensor-product least squares over all points at once at each pair (nu, nv),
   /// checked at the full T per axis, and a search for the fewest nu x nv that hold; starts
@@ -174,7 +176,9 @@ void validate(const Rows& rows, const FitOptions& options);
 /// front end is kDefaultToleranceFraction, sfit/fit_limits.h).
 Point relative_tolerance(const Rows& rows, double fraction);
 
-/// Fits with options.method. kSurface (default, docs/control-points.md): the kSfit01 fit
+/// Validates once, aligns seams, centres, runs the method options.method (from the method
+/// registry), checks the surface as written at every point for every method (one criterion)
+/// and adapts the knots where asked (docs/method.md 7.11). kSurface (default, docs/control-points.md): the kSfit01 fit
 /// below gives a pair that holds; then, for each parameter rule, the tensor-product fit over
 /// all points at once is searched for the fewest nu x nv that hold T per axis at every point
 /// (checked on the finished surface, as below, and guarded against swings between points);

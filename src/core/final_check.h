@@ -27,8 +27,11 @@ void check_offset_digits(const BoundingBox& box, const Point& tolerance, double 
 /// r.surface exactly as it stands (the data's coordinates) against `rows` (as given, at r.u
 /// and r.v_for_points()): a point holds where |S - D| plus a bound on the round-off of evaluating S
 /// there (any evaluator, degree and control points' size) is within T (plus the allowance at T =
-/// 0). Where the centred check held and this one does not, the offset took the digits: throws
-/// kInputData, naming the point. The verdict is the same for any thread count.
+/// 0). Where the method's own check (r.report.within_tolerance) held and this one does not:
+/// if the surface holds on the data less the box's centre, the offset took the digits: throws
+/// kInputData, naming the point; else the method was wrong: within_tolerance false. It is the
+/// driver's one final check (fit_driver.h) for every method. The verdict is the same for any thread
+/// count.
 void check_as_written(FitResult& r, const Rows& rows, const FitOptions& o);
 
 }  // namespace sfit::detail

@@ -49,9 +49,9 @@ void check_counts(const FitOptions& o) {
 // FitOptions::counts: the surface at exactly that pair, the first rule that holds (else the
 // one closest to holding); minimax where least squares does not hold and the norm allows.
 FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0,
-                        std::span<const double> seam_offsets) {
+                        std::span<const double> seam_offsets, const Centring* centring) {
   check_counts(o);
-  const Frame fr(rows, o);
+  const Frame fr = centring ? Frame(*centring, o) : Frame(rows, o);
   const int nu = (*o.counts)[0], nv = (*o.counts)[1];
   if (o.parametrization == Parametrization::kGeometric) {
     std::optional<GeometricFit> g = geometric_at_counts(fr, o, nu, nv);

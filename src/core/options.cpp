@@ -2,6 +2,9 @@
 #include "sfit/options.h"
 
 #include <cstdio>
+#include <mutex>
+
+#include "fit_registry.h"
 
 namespace sfit {
 
@@ -13,8 +16,27 @@ std::string g(double x) {
   return b;
 }
 
+// "a (help a), b or c (help c)": a registry's entries as the option's help lists them.
+template <class Entry>
+std::string listed(const std::vector<Entry>& entries) {
+  std::string out;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    if (k > 0) out += k + 1 < entries.size() ? ", " : entries.size() > 2 ? ", or " : " or ";
+    out += entries[k].name;
+    if (!entries[k].help.empty()) out += " (" + entries[k].help + ")";
+  }
+  return out;
+}
+
 std::vector<OptionSpec> make_table() {
   using T = OptionType;
+  // The allowed methods and parameter rules are the registries' (fit_registry.h); their names
+  // are stored where they stay, so the views below do.
+  std::vector<std::string_view> method_names, rule_names;
+  for (const auto& e : detail::methods()) method_names.push_back(detail::method_name(e.id));
+  for (const auto& e : detail::rules()) rule_names.push_back(detail::rule_name(e.id));
+  const std::string method_help = listed(detail::methods());
+  const std::string rule_help = listed(detail::rules());
   const OptionGroup fit = OptionGroup::kFit, out = OptionGroup::kOutput;
   const double dmin = kMinFitDegree, dmax = kMaxFitDegree;
   return {
@@ -76,19 +98,8 @@ std::vector<OptionSpec> make_table() {
        {"fast", "linear", "known"},
        "count search: fast, linear (the paper's) or known (the count hints are the answer; "
        "Python and the library only, with row_count_hints and column_count_hints)"},
-      {"parameters",
-       "--parameters",
-       fit,
-       T::kChoice,
-       "auto",
-       0,
-       0,
-       {"paper", "uniform", "chord", "centripetal", "geometric", "fewest", "auto"},
-       "how points get parameters, along and across the rows: paper (SFIT01's, by the "
-       "point's index), uniform (index), chord (chord length), centripetal, geometric (each "
-       "point's projection onto a plane or, closed rows, an axis; --method surface only), "
-       "fewest (tries the rules, keeps the fewest control points), or auto (geometric and "
-       "the four with --method surface, paper with --method sfit01)"},
+      {"parameters", "--parameters", fit, T::kChoice, "auto", 0, 0, rule_names,
+       "how points get parameters, along and across the rows: " + rule_help},
       {"knots",
        "--knots",
        fit,
@@ -100,16 +111,7 @@ std::vector<OptionSpec> make_table() {
        "uniform, or adaptive (also fits on knots inserted where the residuals concentrate and "
        "removed where not needed; kept only when smaller, within T and unfolded; open "
        "directions)"},
-      {"method",
-       "--method",
-       fit,
-       T::kChoice,
-       "surface",
-       0,
-       0,
-       {"surface", "sfit01"},
-       "surface (the fewest nu x nv whose surface holds T, searched over all points at once; "
-       "never more than sfit01) or sfit01 (the paper's two stages)"},
+      {"method", "--method", fit, T::kChoice, "surface", 0, 0, method_names, method_help},
       {"norm",
        "--norm",
        fit,
@@ -234,7 +236,16 @@ std::vector<OptionSpec> make_table() {
 }  // namespace
 
 const std::vector<OptionSpec>& option_table() {
-  static const std::vector<OptionSpec> table = make_table();
+  // Rebuilt when a method or rule is registered or removed (register before fitting: a
+  // rebuild moves the entries that references from before point to).
+  static std::mutex mutex;
+  static long generation = -1;
+  static std::vector<OptionSpec> table;
+  const std::lock_guard lock(mutex);
+  if (const long g = detail::registry_generation(); g != generation) {
+    table = make_table();
+    generation = g;
+  }
   return table;
 }
 

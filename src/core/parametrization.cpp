@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fit_registry.h"
 #include "knots.h"
-#include "parse_name.h"
+#include "sfit/error.h"
 
 namespace sfit {
 namespace {
@@ -36,20 +37,46 @@ std::string_view to_string(Parametrization p) {
     case Parametrization::kAuto:
       return "auto";
   }
-  return "paper";
+  return detail::rule_name(p);  // a registered rule ("" where none is)
 }
 
 bool parse_parametrization(std::string_view name, Parametrization& out) {
-  return detail::parse_name(
-      name,
-      {Parametrization::kPaper, Parametrization::kUniform, Parametrization::kChord,
-       Parametrization::kCentripetal, Parametrization::kGeometric, Parametrization::kFewest,
-       Parametrization::kAuto},
-      out);
+  if (const detail::RuleEntry* e = detail::rule_entry(name)) {
+    out = e->id;
+    return true;
+  }
+  return false;
 }
+
+namespace {
+// A registered rule's positions (fit_registry.h), checked: one per point, in [0, 1],
+// nondecreasing, the first 0 and (open rows) the last 1.
+std::vector<double> registered_positions(std::span<const Point> points, Parametrization rule,
+                                         bool periodic) {
+  const detail::RuleEntry* e = detail::rule_entry(rule);
+  if (!e || !e->positions)
+    throw Error(ErrorCode::kUsage,
+                "parameters: no row rule registered as " + std::to_string(static_cast<int>(rule)),
+                Place{.option = "parameters"}, {static_cast<double>(rule)});
+  std::vector<double> f = e->positions(points, periodic);
+  bool ok = f.size() == points.size();
+  for (std::size_t j = 0; ok && j < f.size(); ++j)
+    ok = std::isfinite(f[j]) && f[j] >= 0 && f[j] <= 1 && (j == 0 || f[j] >= f[j - 1]);
+  if (ok && !f.empty()) ok = f.front() == 0 && (periodic || f.size() < 2 || f.back() == 1);
+  if (!ok)
+    throw Error(ErrorCode::kUsage,
+                "parameters " + e->name + " gave " + std::to_string(f.size()) +
+                    " positions for a row of " + std::to_string(points.size()) +
+                    " points, not nondecreasing from 0 to 1",
+                Place{.option = "parameters"});
+  return f;
+}
+}  // namespace
 
 std::vector<double> normalized_positions(std::span<const Point> points, Parametrization rule,
                                          bool periodic) {
+  if (static_cast<int>(rule) > static_cast<int>(Parametrization::kAuto))
+    return registered_positions(points, rule, periodic);
   const std::size_t n = points.size();
   std::vector<double> f(n, 0.0);
   if (n < 2) return f;

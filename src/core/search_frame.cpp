@@ -108,6 +108,15 @@ Frame::Frame(const Rows& rows, const FitOptions& o) : tolerance(o.tolerance) {
   });
 }
 
+Frame::Frame(const Centring& c, const FitOptions& o)
+    : threads(c.threads),
+      box(c.box),
+      centred_box{c.box.min - c.centre, c.box.max - c.centre},
+      centre(c.centre),
+      roundoff(c.roundoff),
+      centred(c.centred),
+      tolerance(o.tolerance) {}
+
 PairVerdict Frame::judge(const Surface& s, std::span<const double> u, std::span<const double> v,
                          DeviationCheck* out, const Rows* sample, bool guards) const {
   const Rows& r = sample ? *sample : centred;

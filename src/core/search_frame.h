@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "deviation.h"
+#include "fit_driver.h"
 #include "pair_search.h"
 #include "sfit/rows.h"
 #include "sfit/surface.h"
@@ -29,6 +30,8 @@ struct Frame {
   Point tolerance = Point::Zero();
 
   Frame(const Rows& rows, const FitOptions& o);
+  /// The same frame from the driver's centring of the rows (fit_driver.h): no second pass.
+  Frame(const Centring& c, const FitOptions& o);
 
   /// Whether a candidate (centred) holds: every point of the rows (or of `sample`, a subset
   /// of them at the same positions) within T per axis and inside the ellipsoid of semi-axes T
@@ -59,7 +62,8 @@ FitResult assemble(const Frame& fr, Surface s, std::vector<double> u, std::vecto
                    const DeviationCheck& c, const FitOptions& o);
 
 /// FitOptions::counts: the surface at exactly that pair (fixed_counts.cpp).
+/// `centring`: the driver's of `rows` where given.
 FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0,
-                        std::span<const double> seam_offsets);
+                        std::span<const double> seam_offsets, const Centring* centring = nullptr);
 
 }  // namespace sfit::detail

@@ -16,6 +16,14 @@
 namespace sfit::detail {
 
 void SurfaceFitter::centre(const Rows& rows) {
+  if (given_) {  // the driver's centring of these rows (fit_aligned()): the same values
+    threads_ = given_->threads;
+    box_ = given_->box;
+    centre_ = given_->centre;
+    centred_ = given_->centred;
+    roundoff_ = given_->roundoff;
+    return;
+  }
   threads_ = threads_for(rows, o_.threads);
   box_ = box_of(rows, threads_);
   centre_ = 0.5 * (box_.min + box_.max);

@@ -9,6 +9,7 @@
 #include "aligned_fit.h"
 #include "deviation.h"
 #include "final_check.h"
+#include "fit_driver.h"
 #include "fit_frame.h"
 #include "fit_monitor.h"
 #include "sfit/error.h"
@@ -43,7 +44,20 @@ long size_of(const FitResult& f) {
 }
 }  // namespace
 
+FitResult fit_sfit01_method(const FitSpec& spec) {
+  SurfaceFitter f(spec.options);
+  return f.fit_aligned(spec.rows, spec.seam_offsets, &spec.centring);
+}
+
 FitResult SurfaceFitter::fit(const Rows& rows) {
+  if (o_.method != FitMethod::kSfit01) {
+    // No per-row state to reuse: the driver (fit_surface() without the knot adaptation), and
+    // update() refits in full the same way.
+    valid_ = false;
+    rows_refitted_ = rows.size();
+    return run_fit(rows, o_, false);
+  }
+  validate(rows, o_);
   FitResult r = fit_centred(rows);
   check_as_written(r, rows, o_);  // final_check.h: the surface as returned and written
   return r;
@@ -56,7 +70,6 @@ FitResult SurfaceFitter::fit_centred(const Rows& rows) {
   if (o_.seam != SeamMode::kKeep || o_.orient != OrientMode::kKeep) {
     const RowAlignment a = alignment_for(rows, o_);
     if (!a.identity()) {
-      validate(rows, o_);  // errors name the original rows and points
       row_seam_offsets_ = seam_offsets(a, o_.closed_u);
       FitResult r = fit_given(apply_alignment(rows, a));
       row_seam_offsets_.clear();
@@ -69,15 +82,6 @@ FitResult SurfaceFitter::fit_centred(const Rows& rows) {
 }
 
 FitResult SurfaceFitter::fit_given(const Rows& rows) {
-  if (o_.method == FitMethod::kSurface) {
-    // The surface search has no per-row state to reuse: update() refits in full.
-    valid_ = false;
-    rows_refitted_ = rows.size();
-    FitOptions o = o_;  // the rows are aligned already (fit())
-    o.seam = SeamMode::kKeep;
-    o.orient = OrientMode::kKeep;
-    return fit_surface_search(rows, o, row_seam_offsets_);
-  }
   if (o_.parametrization != Parametrization::kFewest) return fit_rule(rows, o_.parametrization);
   // Every rule in turn; the surface with the fewest control points wins (the first rule on a
   // tie, the paper's first). update() then refits in full (valid_ is cleared), which is what
@@ -137,6 +141,7 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
     SurfaceFitter f(lower);
     f.degree_lowered_ = true;  // one step down, no further (each step is a whole fit)
     f.row_seam_offsets_ = row_seam_offsets_;
+    f.given_ = given_;  // the same rows: the same centring
     try {
       FitResult c = f.fit_rule(rows, requested);
       if (c.report.within_tolerance && !folds(c) && stays_near_the_data(c.surface, box_)) {
@@ -189,8 +194,7 @@ FitResult SurfaceFitter::fit_rule_unguarded(const Rows& rows, Parametrization re
 
 FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
   const double t0 = now();
-  validate(rows, o_);
-  centre(rows);
+  centre(rows);  // the rows are validated (the driver, fit(), update())
   Attempt at;
   int tightenings = 0;
   DeviationCheck check;
@@ -224,6 +228,7 @@ FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
 }
 
 FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>& changed) {
+  if (o_.method != FitMethod::kSfit01) return fit(rows);  // no state: in full, as fit()
   FitResult r = update_centred(rows, changed);
   check_as_written(r, rows, o_);  // final_check.h (again after a fallback to fit(): the same)
   return r;

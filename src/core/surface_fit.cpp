@@ -1,17 +1,20 @@
-// fit_surface(): the method's dispatch, and the names of methods and norms.
+// fit_surface(): the driver (fit_driver.h) under progress and cancel, and the names of
+// methods (the registry's, fit_registry.h), norms and knot rules.
 #include "sfit/surface_fit.h"
 
 #include <optional>
 
-#include "adaptive_knots.h"
+#include "fit_driver.h"
 #include "fit_monitor.h"
+#include "fit_registry.h"
 #include "parse_name.h"
-#include "surface_fitter.h"
 
 namespace sfit {
 
 std::string_view to_string(FitMethod m) {
-  return m == FitMethod::kSfit01 ? "sfit01" : "surface";
+  if (m == FitMethod::kSfit01) return "sfit01";
+  if (m == FitMethod::kSurface) return "surface";
+  return detail::method_name(m);  // a registered method ("" where none is)
 }
 
 std::string_view to_string(FitNorm n) {
@@ -27,7 +30,12 @@ std::string_view to_string(FitNorm n) {
 }
 
 bool parse_fit_method(std::string_view name, FitMethod& out) {
-  return detail::parse_name(name, {FitMethod::kSurface, FitMethod::kSfit01}, out);
+  for (const detail::MethodEntry& e : detail::methods())
+    if (e.name == name) {
+      out = e.id;
+      return true;
+    }
+  return false;
 }
 
 std::string_view to_string(KnotRule k) {
@@ -47,10 +55,7 @@ FitResult fit_surface(const Rows& rows, const FitOptions& o) {
   std::optional<detail::FitMonitor> monitor;
   if (detail::FitMonitor::wanted(o) && !detail::current_monitor()) monitor.emplace(o);
   const detail::MonitorScope scope(monitor ? &*monitor : detail::current_monitor());
-  detail::SurfaceFitter fitter(o);
-  FitResult r = fitter.fit(rows);
-  if (o.knots == KnotRule::kAdaptive) detail::adapt_knots(rows, o, r);
-  return r;
+  return detail::run_fit(rows, o);
 }
 
 }  // namespace sfit

@@ -5,15 +5,16 @@
 #include <optional>
 #include <vector>
 
+#include "fit_driver.h"
 #include "rerepresent.h"
 #include "sfit/surface_fit.h"
 
 namespace sfit::detail {
 
-/// FitMethod::kSurface (surface_method.cpp).
-/// `seam_offsets`: the fractional seams of rows aligned by SurfaceFitter::fit() (docs/seams.md).
-FitResult fit_surface_search(const Rows& rows, const FitOptions& options,
-                             std::span<const double> seam_offsets = {});
+/// The methods as the registry (fit_registry.cpp) runs them: FitMethod::kSurface
+/// (surface_method.cpp) and FitMethod::kSfit01 (SurfaceFitter below, sfit01_method.cpp).
+FitResult fit_surface_search(const FitSpec& spec);
+FitResult fit_sfit01_method(const FitSpec& spec);
 
 class SurfaceFitter {
  public:
@@ -23,8 +24,9 @@ class SurfaceFitter {
       o_.parametrization = Parametrization::kPaper;
   }
 
-  /// The whole method on `rows` (fit_surface()); for FitMethod::kSurface the surface search
-  /// (fit_surface_search(); update() then refits in full: the same result as fit_surface()).
+  /// IncrementalFit's first fit: validated, aligned, checked as fit_surface() does; for a
+  /// method other than kSfit01 fit_surface()'s driver without the knot adaptation (update()
+  /// then refits in full the same way).
   FitResult fit(const Rows& rows);
   const FitOptions& options() const { return o_; }
   /// The same result as fit(rows) after the rows in `changed` were edited (the number of rows
@@ -33,12 +35,15 @@ class SurfaceFitter {
   /// and the check are redone as fit() does them. Falls back to fit() where reuse is not
   /// exact: a changed bounding box (the centring changes), a tightened budget, no state.
   FitResult update(const Rows& rows, const std::vector<std::size_t>& changed);
-  /// fit() on rows aligned already, with their fractional seams (fit_surface_search()'s
-  /// two-stage bound on the rows fit() aligned).
-  FitResult fit_aligned(const Rows& rows, std::span<const double> seam_offsets) {
+  /// The method on rows validated and aligned already, with their fractional seams and, where
+  /// given, their centring (of these very rows: the driver's); no final check (the driver's).
+  FitResult fit_aligned(const Rows& rows, std::span<const double> seam_offsets,
+                        const Centring* centring = nullptr) {
     row_seam_offsets_.assign(seam_offsets.begin(), seam_offsets.end());
+    given_ = centring;
     FitResult r = fit_given(rows);
     row_seam_offsets_.clear();
+    given_ = nullptr;
     return r;
   }
   /// Rows refitted by the last fit() or update().
@@ -85,6 +90,7 @@ class SurfaceFitter {
   int row_common_ = 0;
   std::size_t rows_refitted_ = 0;
   std::vector<double> row_seam_offsets_;   // fractional seams of the rows being fitted
+  const Centring* given_ = nullptr;        // the driver's centring of the rows fitted
   std::optional<Parametrization> across_;  // the fold guard's rule across the rows
   bool degree_lowered_ = false;            // the fold guard's fit one degree lower across
 };

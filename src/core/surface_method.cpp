@@ -17,6 +17,7 @@
 #include "few_rows.h"
 #include "fit_frame.h"
 #include "fit_monitor.h"
+#include "fit_registry.h"
 #include "geometric_search.h"
 #include "minimax.h"
 #include "pair_search.h"
@@ -76,11 +77,12 @@ bool folds(const FitResult& f, const BoundingBox& box) {
 
 }  // namespace
 
-FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
-                             std::span<const double> seam_offsets) {
+FitResult fit_surface_search(const FitSpec& spec) {
   const double t0 = now();
-  validate(rows, o);
-  if (o.counts) return fit_at_counts(rows, o, t0, seam_offsets);
+  const Rows& rows = spec.rows;  // validated and aligned by the driver (fit_driver.h)
+  const FitOptions& o = spec.options;
+  const std::span<const double> seam_offsets = spec.seam_offsets;
+  if (o.counts) return fit_at_counts(rows, o, t0, seam_offsets, &spec.centring);
 
   // The two-stage fit: a pair that holds, so the bound to beat. On large data at the paper's
   // rule it runs only if the search does not beat a lower bound on its count (its rows'
@@ -94,17 +96,22 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   const bool defer_base = rows.total_points() > kSearchPoints &&
                           o1.parametrization == Parametrization::kPaper &&
                           !(o.tolerance.array() == 0).all();
+  // The method never calls another: it asks the registry for "sfit01" by name (a plug-in that
+  // replaces it there replaces the bound too), on the driver's rows and centring.
+  const auto two_stage = [&] {
+    return method_entry("sfit01").fit(FitSpec{rows, o1, seam_offsets, spec.centring});
+  };
   std::optional<FitResult> base;
   long bound = LONG_MAX, lower = 0;
   if (!defer_base) {
-    base = SurfaceFitter(o1).fit_aligned(rows, seam_offsets);
+    base = two_stage();
     if (base->report.within_tolerance) {
       bound = static_cast<long>(base->surface.count_u) * base->surface.count_v;
       if (FitMonitor* m = current_monitor()) m->found(base->surface.count_u, base->surface.count_v);
     }
   }
 
-  const Frame fr(rows, o);
+  const Frame fr(spec.centring, o);
   const FewRows few(rows.size(), o);
   const FitOptions os = few.options(o);  // the search's problems
   std::optional<Candidate> best;
@@ -341,7 +348,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
       deferred = "; at most " + std::to_string(lower) +
                  ", a lower bound on sfit01's count, so sfit01 was not run";
     } else {
-      base = SurfaceFitter(o1).fit_aligned(rows, seam_offsets);
+      base = two_stage();
       const long base_size = static_cast<long>(base->surface.count_u) * base->surface.count_v;
       if (best && base->report.within_tolerance &&
           base_size <= static_cast<long>(best->nu) * best->nv)
@@ -410,7 +417,7 @@ FitResult fit_surface_search(const Rows& rows, const FitOptions& o,
   // yields to the two stages' surface, which guards its own folds.
   if (o.fold_guard && folds(out, fr.box)) {
     progress_phase("fold guard", 1);
-    if (!base) base = SurfaceFitter(o1).fit_aligned(rows, seam_offsets);
+    if (!base) base = two_stage();
     if (base->report.within_tolerance && base->report.fold < out.report.fold) {
       FitResult& b = *base;
       b.report.method = FitMethod::kSfit01;

@@ -1,0 +1,62 @@
+// The fit driver (fit_driver.h): the stages every method runs in, once each.
+#include "fit_driver.h"
+
+#include <optional>
+
+#include "adaptive_knots.h"
+#include "aligned_fit.h"
+#include "final_check.h"
+#include "fit_frame.h"
+#include "fit_registry.h"
+#include "parallel.h"
+
+namespace sfit::detail {
+
+Centring centre_rows(const Rows& rows, int threads_option) {
+  Centring c;
+  c.threads = threads_for(rows, threads_option);
+  c.box = box_of(rows, c.threads);
+  c.centre = 0.5 * (c.box.min + c.box.max);
+  c.roundoff = kRoundoffRelative * c.box.diagonal();
+  c.centred = rows;
+  parallel_for(rows.size(), c.threads, [&](std::size_t j) {
+    for (Point& p : c.centred.mutable_row(j)) p -= c.centre;
+  });
+  return c;
+}
+
+FitResult run_fit(const Rows& rows, const FitOptions& o, bool adapt) {
+  // 1. Validate once: rows and options; errors name the original rows and points.
+  validate(rows, o);
+  const MethodEntry method = method_entry(o.method);
+  // 2. Seams and orientation (seam_alignment.h, docs/seams.md), for every method: the method
+  // runs on the re-ordered rows; u, the worst point and the report refer to the original
+  // points after restore_original_order().
+  std::optional<RowAlignment> alignment;
+  if (o.seam != SeamMode::kKeep || o.orient != OrientMode::kKeep) {
+    RowAlignment a = alignment_for(rows, o);
+    if (!a.identity()) alignment = std::move(a);
+  }
+  std::optional<Rows> aligned;
+  std::vector<double> offsets;
+  if (alignment) {
+    aligned = apply_alignment(rows, *alignment);
+    offsets = seam_offsets(*alignment, o.closed_u);
+  }
+  const Rows& work = aligned ? *aligned : rows;
+  FitOptions mo = o;  // the rows are aligned now
+  mo.seam = SeamMode::kKeep;
+  mo.orient = OrientMode::kKeep;
+  // 3. Centre once (the box of the aligned rows is the original rows' box).
+  const Centring centring = centre_rows(work, o.threads);
+  // 4. The method.
+  FitResult r = method.fit(FitSpec{work, mo, offsets, centring});
+  if (alignment) restore_original_order(r, rows, *alignment);
+  // 5. One final check, one criterion: the surface as returned and written, at every point.
+  check_as_written(r, rows, o);
+  // 6. Knots where the shape needs them (kept only where smaller; its own checks).
+  if (adapt && o.knots == KnotRule::kAdaptive) adapt_knots(rows, o, r);
+  return r;
+}
+
+}  // namespace sfit::detail
