@@ -54,8 +54,10 @@ FitResult run_fit(const Rows& rows, const FitOptions& o, bool adapt) {
   if (alignment) restore_original_order(r, rows, *alignment);
   // 5. One final check, one criterion: the surface as returned and written, at every point.
   check_as_written(r, rows, o);
-  // 6. Knots where the shape needs them (kept only where smaller; its own checks).
-  if (adapt && o.knots == KnotRule::kAdaptive) adapt_knots(rows, o, r);
+  // 6. Knots where the shape needs them (kept only where smaller), and where kept the same
+  // final check on the surface that is returned.
+  if (adapt && o.knots == KnotRule::kAdaptive && adapt_knots(rows, o, r))
+    check_as_written(r, rows, o);
   return r;
 }
 
