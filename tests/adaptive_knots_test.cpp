@@ -104,9 +104,9 @@ TEST(AdaptiveKnots, CorneredSectionsAndALocalBumpNeedAtLeastThirtyPercentFewer) 
     // The report says which knots made it, and so does its JSON (read back).
     EXPECT_EQ(p.adaptive.report.knots, KnotRule::kAdaptive);
     EXPECT_EQ(p.uniform.report.knots, KnotRule::kUniform);
-    EXPECT_EQ(io::report_from_json_text(io::report_to_json_text(p.adaptive.report, -1), "r.json")
-                  .knots,
-              KnotRule::kAdaptive);
+    EXPECT_EQ(
+        io::report_from_json_text(io::report_to_json_text(p.adaptive.report, -1), "r.json").knots,
+        KnotRule::kAdaptive);
     expect_holds(rows, p.adaptive);
   }
 }

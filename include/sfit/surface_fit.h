@@ -178,11 +178,11 @@ Point relative_tolerance(const Rows& rows, double fraction);
 
 /// Validates once, aligns seams, centres, runs the method options.method (from the method
 /// registry), checks the surface as written at every point for every method (one criterion)
-/// and adapts the knots where asked (docs/method.md 7.11). kSurface (default, docs/control-points.md): the kSfit01 fit
-/// below gives a pair that holds; then, for each parameter rule, the tensor-product fit over
-/// all points at once is searched for the fewest nu x nv that hold T per axis at every point
-/// (checked on the finished surface, as below, and guarded against swings between points);
-/// the smallest wins, the kSfit01 surface where nothing smaller holds.
+/// and adapts the knots where asked (docs/method.md 7.11). kSurface (default,
+/// docs/control-points.md): the kSfit01 fit below gives a pair that holds; then, for each parameter
+/// rule, the tensor-product fit over all points at once is searched for the fewest nu x nv that
+/// hold T per axis at every point (checked on the finished surface, as below, and guarded against
+/// swings between points); the smallest wins, the kSfit01 surface where nothing smaller holds.
 ///
 /// kSfit01, the paper's method: curve stage on each row (minimal count within T/2),
 /// re-representation on the common count nu, transverse stage on the nu columns of control points
