@@ -23,7 +23,7 @@ import time
 import numpy as np
 
 from . import _sfit
-from ._dask_input import _error
+from ._dask_input import _error, _given_counts
 
 _RULES = None
 
@@ -289,9 +289,7 @@ def fit_geometric(runner, counts, n_points, M, longest):
 
     stop = "counts given"
     if counts is not None:
-        nu, nv = (int(c) for c in counts)
-        if nu < du + 1 or nv < dv + 1:
-            raise _error("usage", f"counts ({nu}, {nv}) below degree + 1", option="counts")
+        nu, nv = _given_counts(counts, du, dv)
         probe(nu, nv)
     else:
         most = max(longest, M)

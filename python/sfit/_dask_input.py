@@ -18,6 +18,14 @@ def _error(code, message, **place):
     return e
 
 
+def _given_counts(counts, du, dv):
+    """counts=(nu, nv) as ints, each at least degree + 1 (else a usage error)."""
+    nu, nv = (int(c) for c in counts)
+    if nu < du + 1 or nv < dv + 1:
+        raise _error("usage", f"counts ({nu}, {nv}) below degree + 1", option="counts")
+    return nu, nv
+
+
 # ---------------------------------------------------------------------------- the input
 
 def _read_file(path, row_offset):

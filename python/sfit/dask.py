@@ -31,7 +31,7 @@ import numpy as np
 
 from . import _sfit
 from ._dask_input import (LAS_CHUNK_POINTS, _as_points, _block_stats, _error,
-                          points_from_files)
+                          _given_counts, points_from_files)
 from ._dask_tasks import (_deviation, _first_pass, _partial, _rows_sample, _sample_of,
                           _stats_of)
 
@@ -327,9 +327,7 @@ def fit(points, tol=None, tol_rel=None, degree=3, degree_u=None, degree_v=None, 
     firsts = None  # pass 1's points released where the sample was made (or not needed)
     stop = "minimal"
     if counts is not None:
-        nu, nv = (int(c) for c in counts)
-        if nu < du + 1 or nv < dv + 1:
-            raise _error("usage", f"counts ({nu}, {nv}) below degree + 1", option="counts")
+        nu, nv = _given_counts(counts, du, dv)
         holds_at(nu, nv)
         stop = "counts given"
     else:

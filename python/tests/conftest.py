@@ -89,3 +89,13 @@ def wavy_grid(m=30, n=40):
     X, Y = np.meshgrid(x, y)
     Z = np.sin(X) * np.cos(0.7 * Y) + 0.1 * X
     return np.stack([X, Y, Z], axis=-1)
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    """A LocalCluster of 2 worker processes, one thread each, for the sfit.dask tests
+    (distributed imported here, so the other tests need not)."""
+    import distributed
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as c:
+        yield c

@@ -47,13 +47,6 @@ def relative_difference(a, b):
 
 
 @pytest.fixture(scope="module")
-def cluster():
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as c:
-        yield c
-
-
-@pytest.fixture(scope="module")
 def data():
     return ragged_field(N_POINTS)
 

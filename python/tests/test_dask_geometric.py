@@ -50,13 +50,6 @@ def uneven_chunks(n, chunks):
 
 
 @pytest.fixture(scope="module")
-def cluster():
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as c:
-        yield c
-
-
-@pytest.fixture(scope="module")
 def data():
     return clipped_field(N_POINTS)
 
