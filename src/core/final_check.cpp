@@ -7,6 +7,7 @@
 #include <string>
 
 #include "deviation.h"
+#include "fit_driver.h"
 #include "fit_frame.h"
 #include "sfit/error.h"
 
@@ -84,15 +85,10 @@ void check_as_written(FitResult& r, const Rows& rows, const FitOptions& o) {
   // The method said it held. Where the surface does not hold in centred coordinates either
   // (surface and data less the box's centre), the method was wrong, not the digits: not within.
   {
-    const int threads = threads_for(rows, o.threads);
-    const BoundingBox box = box_of(rows, threads);
-    const Point centre = 0.5 * (box.min + box.max);
-    Rows centred = rows;
-    for (std::size_t j = 0; j < centred.size(); ++j)
-      for (Point& p : centred.mutable_row(j)) p -= centre;
+    const Centring c = centre_rows(rows, o.threads);  // fit_driver.h: as the fit centred them
     Surface sc = s;
-    for (Point& p : sc.control) p -= centre;
-    if (!check_deviation(sc, centred, r.u, r.v_for_points(), o.tolerance, rep.roundoff, threads)
+    for (Point& p : sc.control) p -= c.centre;
+    if (!check_deviation(sc, c.centred, r.u, r.v_for_points(), o.tolerance, rep.roundoff, c.threads)
              .within) {
       rep.within_tolerance = false;
       return;

@@ -26,13 +26,8 @@ std::vector<Point> full_points(const Surface& s) {
 
 // `rows` with point (row, index) at `to`.
 Rows moved(const Rows& rows, std::size_t row, std::size_t index, const Point& to) {
-  Rows out;
-  out.reserve(rows.total_points(), rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    const auto r = rows[j];
-    for (std::size_t k = 0; k < r.size(); ++k) out.push_point(j == row && k == index ? to : r[k]);
-    out.end_row();
-  }
+  Rows out = rows;
+  out.mutable_row(row)[index] = to;
   return out;
 }
 
