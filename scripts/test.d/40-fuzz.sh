@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # CI stage: build the libFuzzer targets (preset 'fuzz': clang, ASan + UBSan) and run each for
-# FUZZ_SECONDS (default 40) on corpora seeded from examples/, tests/bad_input/ and STEP/IGES
+# FUZZ_SECONDS (default 30) on corpora seeded from examples/, tests/bad_input/ and STEP/IGES
 # section files written by make_section_seeds. The surface seeds are fitted by the main build's
 # CLI (BUILD_DIR, default build; scripts/test.sh builds it first), so this stage compiles only
 # the fuzz targets with clang. Prints one summary line per target; fails if
@@ -9,7 +9,7 @@
 # build-fuzz/artifacts/. Environment: FUZZ_SECONDS, FUZZ_WORK (default build-fuzz/run).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
-seconds="${FUZZ_SECONDS:-40}"
+seconds="${FUZZ_SECONDS:-30}"
 work="${FUZZ_WORK:-build-fuzz/run}"
 start=$(date +%s)
 
