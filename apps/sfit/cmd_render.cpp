@@ -1,9 +1,7 @@
-// sfit render, sfit render-rows, and the pictures of 'sfit fit --png'.
+// sfit render and sfit render-rows (the picture options: picture_options.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cctype>
-#include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -23,71 +21,6 @@
 
 namespace sfit::cli {
 namespace {
-
-std::string g(double x) {
-  return fmt::format("{:.4g}", x);
-}
-std::string vec(const Point& p) {
-  if (p.x() == p.y() && p.y() == p.z()) return g(p.x());
-  return fmt::format("({}, {}, {})", g(p.x()), g(p.y()), g(p.z()));
-}
-std::string base_name(const std::string& path) {
-  return path == "-" ? std::string("standard input")
-                     : std::filesystem::path(path).filename().string();
-}
-
-// "WxH" -> (W, H), each 64 ... 4096.
-std::pair<int, int> parse_size(const std::string& text, const std::string& option, int min) {
-  const auto x = text.find_first_of("xX");
-  int w = 0, h = 0;
-  auto number = [](std::string_view s, int& v) {
-    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-    return !s.empty() && r.ec == std::errc() && r.ptr == s.data() + s.size();
-  };
-  if (x == std::string::npos || !number(std::string_view(text).substr(0, x), w) ||
-      !number(std::string_view(text).substr(x + 1), h))
-    throw Error(ErrorCode::kUsage, "'" + text + "' is not a size WIDTHxHEIGHT, e.g. 640x480",
-                Place{.option = option});
-  if (w < min || h < min || w > 4096 || h > 4096)
-    throw Error(ErrorCode::kUsage,
-                fmt::format("size {}x{} is out of range {} ... 4096 each way", w, h, min),
-                Place{.option = option}, {static_cast<double>(w), static_cast<double>(h)});
-  return {w, h};
-}
-
-int parse_up(const std::string& text) {
-  if (text == "x" || text == "X") return 0;
-  if (text == "y" || text == "Y") return 1;
-  if (text == "z" || text == "Z") return 2;
-  throw Error(ErrorCode::kUsage, "'" + text + "' is not an axis: give x, y or z",
-              Place{.option = "--up"});
-}
-
-void check_png_path(const std::string& path, const std::string& option) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".png")
-    throw Error(ErrorCode::kUsage, "'" + path + "': a picture is written as .png",
-                Place{.option = option});
-  io::check_writable(path);
-}
-
-// The second title line: what the picture is of.
-std::string describe(const Surface& s, std::size_t points, std::size_t rows, const Point* tol,
-                     const PictureArgs& a) {
-  std::string t;
-  if (points) t = fmt::format("{} points in {} rows \xC2\xB7 ", points, rows);
-  t += fmt::format("{} \xC3\x97 {} control points, degree {} \xC3\x97 {}", s.count_u, s.count_v,
-                   s.degree_u, s.degree_v);
-  if (s.periodic_u || s.periodic_v)
-    t += s.periodic_u && s.periodic_v ? ", closed u, v"
-         : s.periodic_u               ? ", closed u"
-                                      : ", closed v";
-  if (tol) t += " \xC2\xB7 T = " + vec(*tol);
-  t += " \xC2\xB7 view " + a.view;
-  return t;
-}
 
 struct RenderArgs {
   std::string surface;
@@ -138,8 +71,8 @@ int run_render(const RenderArgs& a) {
                       r["max_deviation"][2].get<double>());
         report_worst =
             fmt::format("the report (at the fitted parameters): max |d|/T {} at row {} point {}",
-                        g(render::tolerance_ratio(m, report_tol, 0)), r["worst"]["row"].get<long>(),
-                        r["worst"]["index"].get<long>());
+                        format_number(render::tolerance_ratio(m, report_tol, 0)),
+                        r["worst"]["row"].get<long>(), r["worst"]["index"].get<long>());
       }
     } catch (const nlohmann::json::exception&) {
       report_tol = Point::Constant(-1);  // a report sfit did not write: ignore it
@@ -183,11 +116,12 @@ int run_render(const RenderArgs& a) {
     }
   }
   render::RenderOptions o = picture_options(a.picture, mode);
-  o.title = {a.picture.title.empty()
-                 ? fmt::format("{} \xC2\xB7 {}", base_name(a.surface), render::to_string(mode))
-                 : a.picture.title,
-             describe(surface, have_data ? data.rows.total_points() : 0,
-                      have_data ? data.rows.size() : 0, tol.x() >= 0 ? &tol : nullptr, a.picture)};
+  o.title = {
+      a.picture.title.empty()
+          ? fmt::format("{} \xC2\xB7 {}", display_name(a.surface), render::to_string(mode))
+          : a.picture.title,
+      describe_surface(surface, have_data ? data.rows.total_points() : 0,
+                       have_data ? data.rows.size() : 0, tol.x() >= 0 ? &tol : nullptr, a.picture)};
   render::RenderResult r;
   try {
     r = render::render_surface(scene, o);
@@ -203,8 +137,9 @@ int run_render(const RenderArgs& a) {
     const Eigen::Vector3d px = r.camera.project(data.rows.points()[r.worst_point]);
     say(fmt::format(
         "closest-point deviation: max |d|/T {} at row {} point {}, pixel ({:.0f}, {:.0f}){}{}",
-        g(r.worst_ratio), row, r.worst_point - static_cast<long>(off[row]), px.x(), px.y(),
-        tol_note.empty() ? "" : "; " + tol_note, report_worst.empty() ? "" : "; " + report_worst));
+        format_number(r.worst_ratio), row, r.worst_point - static_cast<long>(off[row]), px.x(),
+        px.y(), tol_note.empty() ? "" : "; " + tol_note,
+        report_worst.empty() ? "" : "; " + report_worst));
   }
   say(fmt::format("drew {}x{}, {} mode, {:.2f} s", r.image.width, r.image.height,
                   render::to_string(mode), r.seconds));
@@ -230,7 +165,7 @@ int run_render_rows(const RowArgs& a) {
   OutputPlan plan;
   plan.add_input(a.input);
   plan.add(a.output, "-o", OutputTarget::kPicture);
-  const auto [w, h] = parse_size(a.size, "--size", 256);
+  const auto [w, h] = parse_picture_size(a.size, "--size", 256);
   const CheckedFitOptions checked = check_fit_options(a);
   const bool closed = checked.options.closed_u;
 
@@ -265,15 +200,16 @@ int run_render_rows(const RowArgs& a) {
   render::RowPictureOptions o;
   o.width = w;
   o.height = h;
-  o.title = {fmt::format("{} \xC2\xB7 row {} of {}: {} points{}", base_name(in.name), a.row,
-                         in.rows.size(), row.size(), closed ? ", closed" : ""),
-             fmt::format("curve stage: degree {}, {} control points, bound T/2 = {} per axis "
-                         "(T = {}); band = curve \xC2\xB1 bound",
-                         fit.curve.degree, fit.curve.count(), vec(bound), vec(tol))};
+  o.title = {
+      fmt::format("{} \xC2\xB7 row {} of {}: {} points{}", display_name(in.name), a.row,
+                  in.rows.size(), row.size(), closed ? ", closed" : ""),
+      fmt::format("curve stage: degree {}, {} control points, bound T/2 = {} per axis "
+                  "(T = {}); band = curve \xC2\xB1 bound",
+                  fit.curve.degree, fit.curve.count(), format_point(bound), format_point(tol))};
   const render::RowPicture pic = render::render_row(row, fit, bound, o);
   say(fmt::format("row {}: {} points, {} control points (degree {}), max |d|/(T/2) {} at point {}",
-                  a.row, row.size(), fit.curve.count(), fit.curve.degree, g(pic.worst_ratio),
-                  pic.worst_index));
+                  a.row, row.size(), fit.curve.count(), fit.curve.degree,
+                  format_number(pic.worst_ratio), pic.worst_index));
   plan.write_all([&](const PlannedOutput& out, std::string*) {
     render::write_png(out.path, pic.image);
     return std::string();
@@ -282,117 +218,6 @@ int run_render_rows(const RowArgs& a) {
 }
 
 }  // namespace
-
-void add_picture_options(CLI::App* c, PictureArgs& a, const std::string& group,
-                         CLI::Option* needs) {
-  std::vector<CLI::Option*> opts;
-  opts.push_back(
-      c->add_option("--mode", a.modes,
-                    "shaded (default), zebra (highlight stripes), deviation (data points "
-                    "coloured by |d|/T), gauss or mean (curvature)"));
-  opts.push_back(c->add_option("--view", a.view,
-                               "iso (default), front, top, side, or AZIMUTH,ELEVATION in degrees"));
-  opts.push_back(
-      c->add_option("--up", a.up, "the axis pointing up in the picture: x, y or z (default)"));
-  opts.push_back(c->add_option("--size", a.size, "picture size WIDTHxHEIGHT (default 640x480)"));
-  opts.push_back(c->add_option("--exaggerate", a.exaggerate,
-                               "scale of the up axis, e.g. 5 for terrain relief"));
-  opts.push_back(c->add_flag("--net", a.net, "draw the control net (hidden parts faint)"));
-  opts.push_back(c->add_flag("--points", a.points, "draw the data points"));
-  opts.push_back(
-      c->add_flag("--rows", a.rows, "draw the row curves (the surface's v-isocurves at the rows)"));
-  opts.push_back(
-      c->add_option("--stripes", a.stripes, "zebra: stripe pairs across the surface (default 14)"));
-  opts.push_back(c->add_option("--stripe-angle", a.stripe_angle,
-                               "zebra: the light lines' angle from the vertical in degrees "
-                               "(default: along the surface's long axis)"));
-  opts.push_back(
-      c->add_option("--curvature-scale", a.curvature_scale,
-                    "gauss/mean: the colour bar's half range (default: 95th percentile)"));
-  opts.push_back(
-      c->add_option("--title", a.title, "first title line (default: file name and mode)"));
-  for (CLI::Option* o : opts) {
-    o->group(group);
-    if (needs) o->needs(needs);
-  }
-}
-
-void check_picture_outputs(const std::vector<std::string>& pngs, const PictureArgs& a,
-                           const std::string& option) {
-  for (const auto& p : pngs) check_png_path(p, option);
-  for (const auto& m : a.modes) render::parse_mode(m, "--mode");
-  if (!pngs.empty() && a.modes.size() > 1 && a.modes.size() != pngs.size())
-    throw Error(ErrorCode::kUsage,
-                fmt::format("{} modes for {} pictures: give one --mode, or one per picture",
-                            a.modes.size(), pngs.size()),
-                Place{.option = "--mode"});
-  picture_options(a, render::Mode::kShaded);  // checks the rest
-}
-
-render::RenderOptions picture_options(const PictureArgs& a, render::Mode mode) {
-  render::RenderOptions o;
-  o.mode = mode;
-  const auto [w, h] = parse_size(a.size, "--size", 64);
-  o.width = w;
-  o.height = h;
-  o.view = render::parse_view(a.view, parse_up(a.up), "--view");
-  if (!(a.exaggerate > 0) || !std::isfinite(a.exaggerate))
-    throw Error(ErrorCode::kUsage, "must be a finite number > 0", Place{.option = "--exaggerate"},
-                {a.exaggerate});
-  o.exaggeration = a.exaggerate;
-  if (!(a.stripes > 0) || a.stripes > 1000)
-    throw Error(ErrorCode::kUsage, "must be > 0 and <= 1000", Place{.option = "--stripes"},
-                {a.stripes});
-  o.stripes = a.stripes;
-  if (!std::isnan(a.stripe_angle) && !std::isfinite(a.stripe_angle))
-    throw Error(ErrorCode::kUsage, "must be a finite angle in degrees",
-                Place{.option = "--stripe-angle"}, {a.stripe_angle});
-  o.stripe_angle = a.stripe_angle;
-  if (!(a.curvature_scale >= 0) || !std::isfinite(a.curvature_scale))
-    throw Error(ErrorCode::kUsage, "must be a finite number >= 0 (0: automatic)",
-                Place{.option = "--curvature-scale"}, {a.curvature_scale});
-  o.curvature_scale = a.curvature_scale;
-  o.net = a.net;
-  o.points = a.points;
-  o.rows = a.rows;
-  return o;
-}
-
-void write_fit_pictures(const std::vector<std::string>& pngs, const PictureArgs& a,
-                        const FitResult& fit, const Rows& rows, const std::string& input_name) {
-  if (pngs.empty()) return;
-  const std::vector<Point> deviations =
-      render::deviations_at_parameters(fit.surface, rows, fit.u, fit.v_for_points());
-  double largest = 0;
-  for (const Point& d : deviations) largest = std::max(largest, d.cwiseAbs().maxCoeff());
-  for (std::size_t i = 0; i < pngs.size(); ++i) {
-    const std::string m = a.modes.empty()       ? "shaded"
-                          : a.modes.size() == 1 ? a.modes[0]
-                                                : a.modes[i];
-    const render::Mode mode = render::parse_mode(m, "--mode");
-    render::Scene scene;
-    scene.surface = &fit.surface;
-    scene.rows = &rows;
-    scene.deviations = deviations;
-    scene.tolerance = fit.report.tolerance;
-    scene.zero_scale = largest > 0 ? largest : 1;
-    scene.row_v = fit.v;
-    scene.deviation_note = "at the fitted parameters, as the report";
-    render::RenderOptions o = picture_options(a, mode);
-    o.title = {a.title.empty() ? fmt::format("{} \xC2\xB7 {}", base_name(input_name), m) : a.title,
-               describe(fit.surface, rows.total_points(), rows.size(), &fit.report.tolerance, a)};
-    const render::RenderResult r = render::render_surface(scene, o);
-    if (mode == render::Mode::kDeviation && r.worst_point >= 0) {
-      const Eigen::Vector3d px = r.camera.project(rows.points()[r.worst_point]);
-      say(fmt::format(
-          "deviation picture: max |d|/T {} at point {} of the input, pixel ({:.0f}, {:.0f})",
-          g(r.worst_ratio), r.worst_point, px.x(), px.y()));
-    }
-    render::write_png(pngs[i], r.image);  // held back until every output is written
-    say(fmt::format("drew {} ({}x{}, {} mode, {:.2f} s)", pngs[i], r.image.width, r.image.height, m,
-                    r.seconds));
-  }
-}
 
 void add_render_commands(CLI::App& app, Runner& run) {
   {

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sfit/render/surface_picture.h"
@@ -24,6 +25,18 @@ struct PictureArgs {
   double curvature_scale = 0;
   std::string title;
 };
+
+/// A number in 4 significant digits; a point as one number when its three are equal.
+std::string format_number(double x);
+std::string format_point(const Point& p);
+/// The file name shown in titles ("standard input" for "-").
+std::string display_name(const std::string& path);
+/// "WxH" -> (W, H), each min ... 4096; throws Error(kUsage) naming `option`.
+std::pair<int, int> parse_picture_size(const std::string& text, const std::string& option, int min);
+/// The second title line: what the picture is of (points and rows when `points` > 0, the
+/// counts, degrees, closed directions, T when given, the view).
+std::string describe_surface(const Surface& s, std::size_t points, std::size_t rows,
+                             const Point* tol, const PictureArgs& a);
 
 /// Adds --mode, --view, --up, --size, --exaggerate, --net, --points, --rows, --stripes,
 /// --stripe-angle, --curvature-scale, --title to `c` in option group `group`; with `needs` set,
