@@ -17,7 +17,7 @@ PYBIND11_MODULE(_sfit, m) {
   sfit::python::bind_progress(m);
   sfit::python::bind_fit(m);
   sfit::python::bind_io(m);
-  sfit::python::bind_eval_module(m);
+  sfit::python::bind_state(m);
   sfit::python::bind_options(m);
   sfit::python::bind_partial(m);
   sfit::python::bind_geometric(m);
