@@ -8,22 +8,16 @@
 #include <numbers>
 #include <random>
 
+#include "picture_checks.h"
 #include "sfit/surface_fit.h"
 #include "test_support.h"
 
 namespace sfit::test {
 namespace {
 
-FitResult fit(const Rows& rows, double tol, bool closed_u = false) {
-  FitOptions o;
-  o.tolerance = Point::Constant(tol);
-  o.closed_u = closed_u;
-  return fit_surface(rows, o);
-}
-
 TEST(Deviations, AtTheFittedParametersTheyAreTheReports) {
   const Rows rows = load_rows(example("ship_px121_stations.rows"));
-  const FitResult f = fit(rows, 0.2);
+  const FitResult f = fit_at(rows, 0.2);
   const auto d = render::deviations_at_parameters(f.surface, rows, f.u, f.v_for_points());
   ASSERT_EQ(d.size(), rows.total_points());
   Point m = Point::Zero();
@@ -41,7 +35,7 @@ TEST(Deviations, ClosestPointsOfACylinderAreRadial) {
         return Point(std::cos(a), std::sin(a), 3 * t);
       },
       std::vector<int>(7, 40), true);
-  const FitResult f = fit(rows, 1e-7, true);
+  const FitResult f = fit_at(rows, 1e-7, true);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> angle(0, 2 * std::numbers::pi), z(0.3, 2.7), h(-0.2, 0.2);
   std::vector<Point> q;
@@ -61,7 +55,7 @@ TEST(Deviations, ClosestPointsOfACylinderAreRadial) {
 
 TEST(Deviations, ClosestIsNeverFartherThanAssigned) {
   const Rows rows = load_rows(example("iea3p4mw_blade_ragged9.rows"));
-  const FitResult f = fit(rows, 0.02, true);
+  const FitResult f = fit_at(rows, 0.02, true);
   const auto assigned = render::deviations_at_parameters(f.surface, rows, f.u, f.v_for_points());
   const auto closest = render::closest_points(f.surface, rows.points());
   for (std::size_t k = 0; k < assigned.size(); ++k)

@@ -60,4 +60,12 @@ render::RenderOptions small_options(render::Mode mode) {
   return o;
 }
 
+FitResult fit_at(const Rows& rows, double tol, bool closed_u, bool closed_v) {
+  FitOptions o;
+  o.tolerance = Point::Constant(tol);
+  o.closed_u = closed_u;
+  o.closed_v = closed_v;
+  return fit_surface(rows, o);
+}
+
 }  // namespace sfit::test

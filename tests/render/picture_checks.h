@@ -7,6 +7,7 @@
 
 #include "sfit/render/image.h"
 #include "sfit/render/surface_picture.h"
+#include "sfit/surface_fit.h"
 
 namespace sfit::test {
 
@@ -23,6 +24,9 @@ double decode_sequential(render::Rgb c, double* distance = nullptr);
 /// Writes the picture to $SFIT_RENDER_TEST_DUMP/NAME.png when that variable is set (to look at
 /// what a test saw); does nothing otherwise.
 void dump(const render::Image& image, const std::string& name);
+
+/// The default fit at T = `tol` on every axis, closed where asked: the surfaces the tests draw.
+FitResult fit_at(const Rows& rows, double tol, bool closed_u = false, bool closed_v = false);
 
 /// A small, fast picture: 320 x 240, supersampled 2 x 2, no title.
 render::RenderOptions small_options(render::Mode mode);
