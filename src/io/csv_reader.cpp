@@ -47,19 +47,7 @@ std::vector<Field> split(std::string_view s) {
 }
 
 std::string show(std::string_view tok) {
-  std::string s;
-  for (char c : tok.substr(0, 40)) {
-    const unsigned char u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u >= 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", u);
-      s += buf;
-    } else {
-      s += c;
-    }
-  }
-  if (tok.size() > 40) s += "...";
-  return s;
+  return detail::show_field(tok);
 }
 
 std::string lower_unquoted(std::string_view t) {
@@ -206,19 +194,20 @@ class Parser {
 
   double number(const Field& f) {
     const std::string_view tok = f.text;
-    const char* b = tok.data();
-    const char* e = b + tok.size();
-    if (b != e && *b == '+') ++b;
     double x = 0;
-    if (tok.empty()) fail(ErrorCode::kInputSyntax, f.column, "empty field where a number belongs");
-    const auto r = detail::parse_double(b, e, x);
-    if (r.ec == std::errc::result_out_of_range)
-      fail(ErrorCode::kInputData, f.column, "'" + show(tok) + "' is out of the range of a double");
-    if (r.ec != std::errc() || r.ptr != e || b == e)
-      fail(ErrorCode::kInputSyntax, f.column, "'" + show(tok) + "' is not a number");
-    if (!std::isfinite(x))
-      fail(ErrorCode::kInputData, f.column, "'" + show(tok) + "' is not a finite number");
-    return x;
+    switch (detail::read_field_number(tok, x)) {
+      case detail::FieldNumber::kOk:
+        return x;
+      case detail::FieldNumber::kEmpty:
+        fail(ErrorCode::kInputSyntax, f.column, "empty field where a number belongs");
+      case detail::FieldNumber::kOutOfRange:
+        fail(ErrorCode::kInputData, f.column,
+             "'" + show(tok) + "' is out of the range of a double");
+      case detail::FieldNumber::kNotFinite:
+        fail(ErrorCode::kInputData, f.column, "'" + show(tok) + "' is not a finite number");
+      default:
+        fail(ErrorCode::kInputSyntax, f.column, "'" + show(tok) + "' is not a number");
+    }
   }
 
   [[noreturn]] void fail(ErrorCode code, std::size_t col0, const std::string& msg) {

@@ -5,6 +5,10 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <string_view>
 
 namespace sfit::io::detail {
 
@@ -16,6 +20,45 @@ inline std::from_chars_result parse_double(const char* b, const char* e, double&
   const auto r = fast_float::from_chars(b, e, x);
   if (r.ec == std::errc() && std::isnormal(x)) return {r.ptr, r.ec};
   return std::from_chars(b, e, x);
+}
+
+/// What one field of a line holds, read by the rule both readers follow: an optional leading
+/// '+', then a whole number as std::from_chars reads it; too large (1e400) is out of range,
+/// too small (1e-400) underflows to 0 or a subnormal, as strtod; NaN and infinities are not
+/// finite.
+enum class FieldNumber { kOk, kEmpty, kNotANumber, kOutOfRange, kNotFinite };
+
+inline FieldNumber read_field_number(std::string_view tok, double& x) {
+  const char* b = tok.data();
+  const char* e = b + tok.size();
+  if (b != e && *b == '+') ++b;
+  x = 0;
+  if (b == e) return tok.empty() ? FieldNumber::kEmpty : FieldNumber::kNotANumber;
+  const auto r = parse_double(b, e, x);
+  if (r.ec == std::errc::result_out_of_range && r.ptr == e) {
+    x = std::strtod(std::string(b, e).c_str(), nullptr);
+    return std::isinf(x) ? FieldNumber::kOutOfRange : FieldNumber::kOk;
+  }
+  if (r.ec != std::errc() || r.ptr != e) return FieldNumber::kNotANumber;
+  return std::isfinite(x) ? FieldNumber::kOk : FieldNumber::kNotFinite;
+}
+
+/// A field as an error message shows it: at most 40 characters, control and non-ASCII bytes as
+/// \xNN.
+inline std::string show_field(std::string_view tok) {
+  std::string s;
+  for (char c : tok.substr(0, 40)) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u >= 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", u);
+      s += buf;
+    } else {
+      s += c;
+    }
+  }
+  if (tok.size() > 40) s += "...";
+  return s;
 }
 
 }  // namespace sfit::io::detail

@@ -119,42 +119,21 @@ class Parser {
     if (out_.rows.open_row_size() > 0) out_.rows.end_row();
   }
 
-  static std::string show(std::string_view tok) {
-    std::string s;
-    for (char c : tok.substr(0, 40)) {
-      const unsigned char u = static_cast<unsigned char>(c);
-      if (u < 0x20 || u >= 0x7f) {
-        char buf[8];
-        std::snprintf(buf, sizeof buf, "\\x%02x", u);
-        s += buf;
-      } else {
-        s += c;
-      }
+  double number(std::string_view tok, std::size_t col) {
+    double x = 0;
+    switch (detail::read_field_number(tok, x)) {
+      case detail::FieldNumber::kOk:
+        return x;
+      case detail::FieldNumber::kOutOfRange:
+        fail(ErrorCode::kInputData, col, "'" + show(tok) + "' is out of the range of a double");
+      case detail::FieldNumber::kNotFinite:
+        fail(ErrorCode::kInputData, col, "'" + show(tok) + "' is not a finite number");
+      default:
+        fail(ErrorCode::kInputSyntax, col, "'" + show(tok) + "' is not a number");
     }
-    if (tok.size() > 40) s += "...";
-    return s;
   }
 
-  double number(std::string_view tok, std::size_t col) {
-    const char* b = tok.data();
-    const char* e = b + tok.size();
-    if (b != e && *b == '+') ++b;
-    double x = 0;
-    const auto r = detail::parse_double(b, e, x);
-    if (r.ec == std::errc::result_out_of_range && r.ptr == e) {
-      // Too large is an error; too small (1e-400) underflows to 0 or a subnormal, as strtod.
-      const std::string copy(b, e);
-      x = std::strtod(copy.c_str(), nullptr);
-      if (std::isinf(x))
-        fail(ErrorCode::kInputData, col, "'" + show(tok) + "' is out of the range of a double");
-      return x;
-    }
-    if (r.ec != std::errc() || r.ptr != e || b == e)
-      fail(ErrorCode::kInputSyntax, col, "'" + show(tok) + "' is not a number");
-    if (!std::isfinite(x))
-      fail(ErrorCode::kInputData, col, "'" + show(tok) + "' is not a finite number");
-    return x;
-  }
+  static std::string show(std::string_view tok) { return detail::show_field(tok); }
 
   [[noreturn]] void fail(ErrorCode code, std::size_t col0, const std::string& msg) {
     Place p{.file = out_.name,

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "sfit/error.h"
+#include "sfit/io/rows_reader.h"
 #include "test_support.h"
 
 namespace sfit::io {
@@ -131,6 +132,29 @@ TEST(CsvReader, ShipStationsAsCsvEqualTheRowsFile) {
     ASSERT_EQ(f.rows.size(), rows.size());
     EXPECT_EQ(f.rows.offsets(), rows.offsets());
     EXPECT_EQ(f.rows.points(), rows.points());
+  }
+}
+
+// A number field means the same in both readers: a leading '+', underflow to 0 or a subnormal
+// (as strtod), overflow, NaN and words refused with the same message and code.
+TEST(CsvReader, NumbersReadAsTheRowsReaderReadsThem) {
+  const RowsFile c = parse_csv("x,y,z\n+1,1e-400,4.9e-324\n2,3,4\n", "in.csv");
+  const RowsFile r = parse_rows("+1 1e-400 4.9e-324\n2 3 4\n", "in.rows");
+  ASSERT_EQ(c.rows.total_points(), 2u);
+  EXPECT_EQ(c.rows.points(), r.rows.points());
+  EXPECT_EQ(c.rows[0][0].y(), 0.0);
+  EXPECT_GT(c.rows[0][0].z(), 0.0);  // the smallest subnormal, not 0
+  for (const char* bad : {"1e400", "-1e999", "nan", "inf", "1.2.3", "+", "0x1p3"}) {
+    const Error ec = parse_error(std::string("x,y,z\n1,") + bad + ",3\n");
+    Error er(ErrorCode::kInternal, "");
+    try {
+      parse_rows(std::string("1 ") + bad + " 3\n", "in.rows");
+      ADD_FAILURE() << "no .rows error for " << bad;
+    } catch (const Error& e) {
+      er = e;
+    }
+    EXPECT_EQ(ec.code(), er.code()) << bad;
+    EXPECT_EQ(ec.message(), er.message()) << bad;
   }
 }
 
