@@ -1,4 +1,4 @@
-// The fit driver and its registries (src/core/fit_driver.h, fit_registry.h): a method and a
+// The fit driver and its registries (src/core/fit/fit_driver.h, fit_registry.h): a method and a
 // parameter rule registered here, in the test only, are selected through FitOptions by name,
 // fitted by fit_surface(), checked by the driver's final check, listed by the option table while
 // registered; validation runs once per fit.
