@@ -35,8 +35,10 @@ std::vector<double> row_positions(Parametrization rule, std::span<const Point> p
 Registry<MethodEntry>& method_registry() {
   static Registry<MethodEntry> r = [] {
     Registry<MethodEntry> m;
-    auto add = [&](FitMethod id, std::string name, std::string help, MethodFunction f) {
-      m.entries.push_back(MethodEntry{id, std::move(name), std::move(help), std::move(f)});
+    auto add = [&](FitMethod id, std::string name, std::string help, MethodFunction f,
+                   StateFunction incremental = {}) {
+      m.entries.push_back(
+          MethodEntry{id, std::move(name), std::move(help), std::move(f), std::move(incremental)});
       m.active.push_back(true);
     };
     // The built-in methods, one line each.
@@ -44,7 +46,7 @@ Registry<MethodEntry>& method_registry() {
         "the fewest nu x nv whose surface holds T, searched over all points at once; never more "
         "than sfit01",
         fit_surface_search);
-    add(FitMethod::kSfit01, "sfit01", "the paper's two stages", fit_sfit01_method);
+    add(FitMethod::kSfit01, "sfit01", "the paper's two stages", fit_sfit01_method, sfit01_state);
     return m;
   }();
   return r;
