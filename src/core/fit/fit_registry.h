@@ -1,6 +1,7 @@
 // The registries of fit methods and parameter rules (docs/method.md, "How a fit runs"):
 // every method and rule is a plug-in with a name, a help line and a function. The built-ins
-// register in fit_registry.cpp, one line each; a test or an application may register more.
+// register in fit_registry.cpp, one line each; a test or an application registers more through
+// the public face, sfit/fit_registry.h (RegisteredMethod, RegisteredRule).
 // FitOptions names one by its id: a FitMethod / Parametrization value, the built-ins' enum
 // values or the id register_*() handed out. The option table's allowed values of `method` and
 // `parameters` (and so the CLI's --help, Python, the editor and docs/options.md) list the
@@ -88,32 +89,5 @@ Parametrization register_rule(std::string name, std::string help, PositionFuncti
 /// Removes a registered method or rule (not a built-in); its name is free again.
 void unregister_method(FitMethod id);
 void unregister_rule(Parametrization id);
-
-/// A method (rule) registered for a scope, e.g. a test.
-class ScopedMethod {
- public:
-  ScopedMethod(std::string name, std::string help, MethodFunction fit)
-      : id_(register_method(std::move(name), std::move(help), std::move(fit))) {}
-  ~ScopedMethod() { unregister_method(id_); }
-  ScopedMethod(const ScopedMethod&) = delete;
-  ScopedMethod& operator=(const ScopedMethod&) = delete;
-  FitMethod id() const { return id_; }
-
- private:
-  FitMethod id_;
-};
-
-class ScopedRule {
- public:
-  ScopedRule(std::string name, std::string help, PositionFunction positions)
-      : id_(register_rule(std::move(name), std::move(help), std::move(positions))) {}
-  ~ScopedRule() { unregister_rule(id_); }
-  ScopedRule(const ScopedRule&) = delete;
-  ScopedRule& operator=(const ScopedRule&) = delete;
-  Parametrization id() const { return id_; }
-
- private:
-  Parametrization id_;
-};
 
 }  // namespace sfit::detail
