@@ -1,4 +1,4 @@
-// The banded Givens least-squares kernel (src/core/banded_lsq.h) against Eigen's SparseQR on
+// The banded Givens least-squares kernel (src/core/solve/banded_lsq.h) against Eigen's SparseQR on
 // the same B-spline collocation matrix: the measurement behind keeping our own kernel.
 #include <benchmark/benchmark.h>
 

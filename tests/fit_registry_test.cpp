@@ -1,5 +1,6 @@
-// The fit driver and its registries (src/core/fit_driver.h, fit_registry.h): a method and a
-// parameter rule registered here, in the test only, are selected through FitOptions by name,
+// The fit driver and its registries (src/core/fit/fit_driver.h, fit_registry.h): a method and a
+// parameter rule registered here through the public face (sfit/fit_registry.h), in the test
+// only, are selected through FitOptions by name,
 // fitted by fit_surface(), checked by the driver's final check, listed by the option table while
 // registered; validation runs once per fit.
 #include <gtest/gtest.h>
@@ -11,14 +12,13 @@
 #include "fit_driver.h"
 #include "fit_registry.h"
 #include "sfit/error.h"
+#include "sfit/fit_registry.h"
 #include "sfit/options.h"
 #include "sfit/surface_fit.h"
 #include "support/test_support.h"
 
 namespace sfit {
 namespace {
-
-using detail::FitSpec;
 
 // A bilinear patch through four corners: the fake method's surface is exact on it.
 const Point kCorner[4] = {{0, 0, 0}, {2, 0, 0.5}, {0, 1, -0.25}, {2, 1.5, 1}};
@@ -36,10 +36,10 @@ struct FakeLog {
   std::size_t centred_points = 0;
 };
 
-FitResult corners_surface(const FitSpec& spec, FakeLog& log) {
+FitResult corners_surface(const MethodInput& spec, FakeLog& log) {
   ++log.calls;
-  log.centre = spec.centring.centre;
-  log.centred_points = spec.centring.centred.total_points();
+  log.centre = spec.centre;
+  log.centred_points = spec.centred.total_points();
   const Rows& rows = spec.rows;
   FitResult r;
   Surface& s = r.surface;
@@ -74,8 +74,8 @@ FitOptions options_with_tolerance(double t) {
 
 TEST(FitRegistry, FakeMethodSelectedByNameRunsUnderTheDriver) {
   FakeLog log;
-  const detail::ScopedMethod fake("corners_test", "the bilinear patch through the corners",
-                                  [&](const FitSpec& s) { return corners_surface(s, log); });
+  const RegisteredMethod fake("corners_test", "the bilinear patch through the corners",
+                              [&](const MethodInput& s) { return corners_surface(s, log); });
   FitSettings st;
   set_fit_option(st, "method", std::string("corners_test"), "method");
   EXPECT_EQ(st.options.method, fake.id());
@@ -98,8 +98,8 @@ TEST(FitRegistry, FakeMethodSelectedByNameRunsUnderTheDriver) {
 
 TEST(FitRegistry, DriversFinalCheckRejectsAFakeMethodsBadSurface) {
   FakeLog log;
-  const detail::ScopedMethod fake("corners_test", "",
-                                  [&](const FitSpec& s) { return corners_surface(s, log); });
+  const RegisteredMethod fake("corners_test", "",
+                              [&](const MethodInput& s) { return corners_surface(s, log); });
   // Not bilinear: the corners' patch misses the middle by up to 0.3, far beyond T.
   const Rows rows = rows_of([](double s, double t) {
     Point p = bilinear(s, t);
@@ -118,8 +118,8 @@ TEST(FitRegistry, DriversFinalCheckRejectsAFakeMethodsBadSurface) {
 
 TEST(FitRegistry, FakeMethodNeverSeesInvalidRows) {
   FakeLog log;
-  const detail::ScopedMethod fake("corners_test", "",
-                                  [&](const FitSpec& s) { return corners_surface(s, log); });
+  const RegisteredMethod fake("corners_test", "",
+                              [&](const MethodInput& s) { return corners_surface(s, log); });
   FitOptions o = options_with_tolerance(1e-3);
   o.method = fake.id();
   const Rows one = test::sample_rows(bilinear, {5});
@@ -135,7 +135,7 @@ TEST(FitRegistry, FakeMethodNeverSeesInvalidRows) {
 TEST(FitRegistry, UnregisteredMethodIdIsAUsageError) {
   FitMethod gone;
   {
-    const detail::ScopedMethod fake("corners_test", "", [](const FitSpec&) { return FitResult{}; });
+    const RegisteredMethod fake("corners_test", "", [](const MethodInput&) { return FitResult{}; });
     gone = fake.id();
   }
   FitOptions o = options_with_tolerance(1e-3);
@@ -175,7 +175,7 @@ Rows crowded_rows() {
 }
 
 TEST(FitRegistry, FakeRuleSelectedByNameGivesTheRowsItsPositions) {
-  const detail::ScopedRule rule("squared_test", "the uniform position squared", squared);
+  const RegisteredRule rule("squared_test", "the uniform position squared", squared);
   FitSettings st;
   set_fit_option(st, "parameters", std::string("squared_test"), "parameters");
   EXPECT_EQ(st.options.parametrization, rule.id());
@@ -197,7 +197,7 @@ TEST(FitRegistry, FakeRuleSelectedByNameGivesTheRowsItsPositions) {
 }
 
 TEST(FitRegistry, FakeRuleGivingBadPositionsIsAUsageError) {
-  const detail::ScopedRule rule("reversed_test", "", [](std::span<const Point> p, bool) {
+  const RegisteredRule rule("reversed_test", "", [](std::span<const Point> p, bool) {
     std::vector<double> f(p.size());
     for (std::size_t k = 0; k < f.size(); ++k) f[k] = 1.0 - k / double(f.size() - 1);
     return f;
@@ -224,9 +224,9 @@ TEST(FitRegistry, OptionTableListsRegisteredNamesWhileRegistered) {
   EXPECT_TRUE(lists(find_option("method"), "sfit01"));
   EXPECT_TRUE(lists(find_option("parameters"), "chord"));
   {
-    const detail::ScopedMethod fake("corners_test", "bilinear through the corners",
-                                    [](const FitSpec&) { return FitResult{}; });
-    const detail::ScopedRule rule("squared_test", "uniform squared", squared);
+    const RegisteredMethod fake("corners_test", "bilinear through the corners",
+                                [](const MethodInput&) { return FitResult{}; });
+    const RegisteredRule rule("squared_test", "uniform squared", squared);
     EXPECT_TRUE(lists(find_option("method"), "corners_test"));
     EXPECT_NE(find_option("method")->help.find("bilinear through the corners"), std::string::npos);
     EXPECT_TRUE(lists(find_option("parameters"), "squared_test"));
@@ -247,9 +247,9 @@ TEST(FitRegistry, OptionTableListsRegisteredNamesWhileRegistered) {
 }
 
 TEST(FitRegistry, NameTakenIsRefused) {
-  EXPECT_THROW(detail::register_method("sfit01", "", [](const FitSpec&) { return FitResult{}; }),
+  EXPECT_THROW(RegisteredMethod("sfit01", "", [](const MethodInput&) { return FitResult{}; }),
                Error);
-  EXPECT_THROW(detail::register_rule("chord", "", squared), Error);
+  EXPECT_THROW(RegisteredRule("chord", "", squared), Error);
 }
 
 TEST(FitDriver, ValidatesOncePerFit) {

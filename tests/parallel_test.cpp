@@ -1,4 +1,4 @@
-// The deterministic parallel loop and its persistent pool (src/core/parallel.h).
+// The deterministic parallel loop and its persistent pool (src/core/fit/parallel.h).
 #include "parallel.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The surface search's least-squares solver (src/core/tensor_lsq.h, kron_pcg.h): the surface
+// The surface search's least-squares solver (src/core/solve/tensor_lsq.h, kron_pcg.h): the surface
 // at a pair equals a dense least-squares reference on ragged rows, with conjugate gradients
 // and with the factorisation alone; grids evenly spaced along their rows solve separably at
 // the chord rule; weighted rows give weighted least squares; the Kronecker preconditioner is

@@ -11,7 +11,7 @@
 namespace sfit {
 
 namespace detail {
-class SurfaceFitter;
+struct IncrementalState;
 }
 
 /// A fitted state that follows edits of its rows. Every edit returns exactly what
@@ -48,7 +48,7 @@ class IncrementalFit {
  private:
   const FitResult& apply(Rows edited, std::size_t row);
   Rows rows_;
-  std::unique_ptr<detail::SurfaceFitter> fitter_;
+  std::unique_ptr<detail::IncrementalState> state_;
   FitResult result_;
 };
 

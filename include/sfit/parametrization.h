@@ -1,6 +1,6 @@
 // The rules that give data points their parameters (docs/method.md section 3 step 3 and 7.4),
 // and the positions of a row's points they start from. The parameters of a given count and the
-// re-representation map are private (src/core/parameters.h).
+// re-representation map are private (src/core/spline/parameters.h).
 #pragma once
 
 #include <span>

@@ -1,7 +1,7 @@
 // The paper's two-stage method (FitMethod::kSfit01, docs/method.md): its driver. An attempt
 // (sfit01_attempt.h: curve stage on the rows, re-representation on a common count, transverse
 // stage on the columns of control points) at the stage budget T/2, tightened until the final
-// check holds; the rule's fallbacks, the fold guard and update() after edits of some rows.
+// check holds; the rule's fallbacks, the fold guard and update_aligned() after edits of some rows.
 // Unchanged in its results by the split into frame and methods (the tests compare bits).
 #include <algorithm>
 #include <optional>
@@ -46,46 +46,43 @@ long size_of(const FitResult& f) {
 
 FitResult fit_sfit01_method(const FitSpec& spec) {
   SurfaceFitter f(spec.options);
+  f.rows_take_all(spec.rows_take_all);
   return f.fit_aligned(spec.rows, spec.seam_offsets, &spec.centring);
 }
 
-FitResult SurfaceFitter::fit(const Rows& rows) {
-  if (o_.method != FitMethod::kSfit01) {
-    // No per-row state to reuse: the driver (fit_surface() without the knot adaptation), and
-    // update() refits in full the same way.
-    valid_ = false;
-    rows_refitted_ = rows.size();
-    return run_fit(rows, o_, false);
-  }
-  validate(rows, o_);
-  FitResult r = fit_centred(rows);
-  check_as_written(r, rows, o_);  // final_check.h: the surface as returned and written
-  return r;
-}
+namespace {
 
-FitResult SurfaceFitter::fit_centred(const Rows& rows) {
-  // Seam alignment and orientation (seam_alignment.h, docs/seams.md), for every
-  // method: the fit runs on the re-ordered rows; u, the worst point and the report refer to
-  // the original points. update() refits in full after an aligned fit (valid_ cleared).
-  if (o_.seam != SeamMode::kKeep || o_.orient != OrientMode::kKeep) {
-    const RowAlignment a = alignment_for(rows, o_);
-    if (!a.identity()) {
-      row_seam_offsets_ = seam_offsets(a, o_.closed_u);
-      FitResult r = fit_given(apply_alignment(rows, a));
-      row_seam_offsets_.clear();
-      restore_original_order(r, rows, a);
-      valid_ = false;
-      return r;
-    }
+// IncrementalFit's state (MethodState, fit_registry.h): a SurfaceFitter that keeps its row
+// stage between the driver's fits. It must be this class, not the registry's function: the
+// update reuses the curve stage's per-row fits and re-representations (docs/method.md 7.7),
+// which only the two-stage method has.
+class Sfit01State final : public MethodState {
+ public:
+  explicit Sfit01State(const FitOptions& o) : f_(o) {}
+  FitResult fit(const FitSpec& spec) override {
+    return f_.fit_aligned(spec.rows, spec.seam_offsets, &spec.centring);
   }
-  return fit_given(rows);
+  FitResult update(const FitSpec& spec, const std::vector<std::size_t>& changed) override {
+    return f_.update_aligned(spec.rows, changed, spec.centring);
+  }
+  void forget() override { f_.forget(); }
+  std::size_t rows_refitted() const override { return f_.rows_refitted(); }
+
+ private:
+  SurfaceFitter f_;
+};
+
+}  // namespace
+
+std::unique_ptr<MethodState> sfit01_state(const FitOptions& options) {
+  return std::make_unique<Sfit01State>(options);
 }
 
 FitResult SurfaceFitter::fit_given(const Rows& rows) {
   if (o_.parametrization != Parametrization::kFewest) return fit_rule(rows, o_.parametrization);
   // Every rule in turn; the surface with the fewest control points wins (the first rule on a
-  // tie, the paper's first). update() then refits in full (valid_ is cleared), which is what
-  // this does.
+  // tie, the paper's first). update_aligned() then refits in full (valid_ is cleared), which is
+  // what this does.
   const double t0 = now();
   std::optional<FitResult> best;
   for (Parametrization rule : {Parametrization::kPaper, Parametrization::kUniform,
@@ -130,7 +127,7 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
     }
   }
   across_.reset();
-  valid_ = false;  // update() refits in full
+  valid_ = false;  // update_aligned() refits in full
   if (!best && o_.degree_v > 1 && !degree_lowered_) {
     // No rule across the rows avoided the fold: one degree lower across them. A cubic across
     // unevenly spaced rows overshoots between them (the ragged 3.4 MW blade dips 4.2 cm below
@@ -194,7 +191,7 @@ FitResult SurfaceFitter::fit_rule_unguarded(const Rows& rows, Parametrization re
 
 FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
   const double t0 = now();
-  centre(rows);  // the rows are validated (the driver, fit(), update())
+  centre(rows);  // the rows are validated and centred (the driver)
   Attempt at;
   int tightenings = 0;
   DeviationCheck check;
@@ -227,44 +224,34 @@ FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
   return finish(at, tightenings, check, t0);
 }
 
-FitResult SurfaceFitter::update(const Rows& rows, const std::vector<std::size_t>& changed) {
-  if (o_.method != FitMethod::kSfit01) return fit(rows);  // no state: in full, as fit()
-  FitResult r = update_centred(rows, changed);
-  check_as_written(r, rows, o_);  // final_check.h (again after a fallback to fit(): the same)
-  return r;
-}
-
-FitResult SurfaceFitter::update_centred(const Rows& rows, const std::vector<std::size_t>& changed) {
+FitResult SurfaceFitter::update_aligned(const Rows& rows, const std::vector<std::size_t>& changed,
+                                        const Centring& c) {
   const double t0 = now();
-  validate(rows, o_);
-  const int threads = threads_for(rows, o_.threads);
-  const BoundingBox box = box_of(rows, threads);
-  if (!valid_ || rows.size() != centred_.size() || box.min != box_.min || box.max != box_.max ||
-      rule_ != o_.parametrization)  // (never equal for kFewest: full refits)
-    return fit_centred(rows);
-  // Rows that need re-ordering: a full fit (fit() aligns them).
-  if (!alignment_for(rows, o_).identity()) return fit_centred(rows);
+  // The fit in full, as the driver's fit_aligned() of these rows would run it.
+  const auto in_full = [&] { return fit_aligned(rows, {}, &c); };
+  if (!valid_ || rows.size() != centred_.size() || c.box.min != box_.min || c.box.max != box_.max ||
+      rule_ != o_.parametrization)  // (never equal for kFewest)
+    return in_full();
   // Same box, so the same centre, round-off allowance and budget: refresh the edited rows.
   std::vector<char> mark(rows.size(), 0);
   for (std::size_t j : changed) mark.at(j) = 1;
   valid_ = false;  // until the update completes
-  threads_ = threads;
-  copy_centred(rows);
+  threads_ = c.threads;
+  centred_ = c.centred;  // the driver's: the rows less the same centre
   Attempt at;
   try {
     at = fit_once(bound_, &mark);
   } catch (const Error& e) {
     if (e.code() != ErrorCode::kToleranceNotMet) throw;
-    return fit_centred(
-        rows);  // fit() would have met the same failure first: do exactly what it does
+    return in_full();  // the fit would have met the same failure first: do exactly what it does
   }
   const DeviationCheck check =
       check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_, threads_);
-  if (!check.within) return fit_centred(rows);  // fit() would tighten: do exactly that
+  if (!check.within) return in_full();  // the fit would tighten: do exactly that
   FitResult out = finish(at, 0, check, t0);
   if (rule_ != Parametrization::kPaper && failed_guard(out.surface, box_))
-    return fit_centred(rows);  // fit() falls back to the paper's rule: do exactly that
-  if (o_.fold_guard && folds(out)) return fit_centred(rows);  // fit() guards the fold
+    return in_full();  // the fit falls back to the paper's rule: do exactly that
+  if (o_.fold_guard && folds(out)) return in_full();  // the fit guards the fold
   valid_ = true;
   return out;
 }

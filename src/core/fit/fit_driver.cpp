@@ -25,7 +25,10 @@ Centring centre_rows(const Rows& rows, int threads_option) {
   return c;
 }
 
-FitResult run_fit(const Rows& rows, const FitOptions& o, bool adapt) {
+namespace {
+
+FitResult run(const Rows& rows, const FitOptions& o, bool adapt, MethodState* state,
+              const std::vector<std::size_t>* changed) {
   // 1. Validate once: rows and options; errors name the original rows and points.
   validate(rows, o);
   const MethodEntry method = method_entry(o.method);
@@ -49,8 +52,17 @@ FitResult run_fit(const Rows& rows, const FitOptions& o, bool adapt) {
   mo.orient = OrientMode::kKeep;
   // 3. Centre once (the box of the aligned rows is the original rows' box).
   const Centring centring = centre_rows(work, o.threads);
-  // 4. The method.
-  FitResult r = method.fit(FitSpec{work, mo, offsets, centring});
+  // 4. The method (as IncrementalFit's state where one is given).
+  const FitSpec spec{work, mo, offsets, centring};
+  FitResult r;
+  if (!state) {
+    r = method.fit(spec);
+  } else if (alignment || !changed) {
+    r = state->fit(spec);
+    if (alignment) state->forget();  // its rows were re-ordered: the next edit refits in full
+  } else {
+    r = state->update(spec, *changed);
+  }
   if (alignment) restore_original_order(r, rows, *alignment);
   // 5. One final check, one criterion: the surface as returned and written, at every point.
   check_as_written(r, rows, o);
@@ -59,6 +71,17 @@ FitResult run_fit(const Rows& rows, const FitOptions& o, bool adapt) {
   if (adapt && o.knots == KnotRule::kAdaptive && adapt_knots(rows, o, r))
     check_as_written(r, rows, o);
   return r;
+}
+
+}  // namespace
+
+FitResult run_fit(const Rows& rows, const FitOptions& o, bool adapt) {
+  return run(rows, o, adapt, nullptr, nullptr);
+}
+
+FitResult run_fit(const Rows& rows, const FitOptions& o, MethodState& state,
+                  const std::vector<std::size_t>* changed) {
+  return run(rows, o, false, &state, changed);
 }
 
 }  // namespace sfit::detail

@@ -363,8 +363,7 @@ FitResult fit_surface_search(const FitSpec& spec) {
   std::optional<FitResult> all_to_rows;
   if (!best && base && base->report.within_tolerance && !interpolate && !forced &&
       static_cast<std::size_t>(base->surface.count_u) * base->surface.count_v > rows.total_points())
-    all_to_rows = fit_rows_at_t(rows, fr.centred, o1, os, *base, floor_of(o1.parametrization),
-                                fr.roundoff, fr.box.diagonal(), seam_offsets);
+    all_to_rows = fit_rows_at_t(spec, o1, os, *base, floor_of(o1.parametrization));
   if (!best) {
     FitResult& b = all_to_rows ? *all_to_rows : *base;
     b.report.method = FitMethod::kSfit01;

@@ -4,8 +4,10 @@
 
 #include <deque>
 #include <mutex>
+#include <utility>
 
 #include "sfit/error.h"
+#include "sfit/fit_registry.h"
 #include "surface_fitter.h"
 
 namespace sfit::detail {
@@ -35,8 +37,10 @@ std::vector<double> row_positions(Parametrization rule, std::span<const Point> p
 Registry<MethodEntry>& method_registry() {
   static Registry<MethodEntry> r = [] {
     Registry<MethodEntry> m;
-    auto add = [&](FitMethod id, std::string name, std::string help, MethodFunction f) {
-      m.entries.push_back(MethodEntry{id, std::move(name), std::move(help), std::move(f)});
+    auto add = [&](FitMethod id, std::string name, std::string help, MethodFunction f,
+                   StateFunction incremental = {}) {
+      m.entries.push_back(
+          MethodEntry{id, std::move(name), std::move(help), std::move(f), std::move(incremental)});
       m.active.push_back(true);
     };
     // The built-in methods, one line each.
@@ -44,7 +48,7 @@ Registry<MethodEntry>& method_registry() {
         "the fewest nu x nv whose surface holds T, searched over all points at once; never more "
         "than sfit01",
         fit_surface_search);
-    add(FitMethod::kSfit01, "sfit01", "the paper's two stages", fit_sfit01_method);
+    add(FitMethod::kSfit01, "sfit01", "the paper's two stages", fit_sfit01_method, sfit01_state);
     return m;
   }();
   return r;
@@ -212,3 +216,60 @@ void unregister_rule(Parametrization id) {
 }
 
 }  // namespace sfit::detail
+
+namespace sfit {
+
+// The public face (sfit/fit_registry.h): handles over the registries above.
+
+RegisteredMethod::RegisteredMethod(std::string name, std::string help, FitMethodFunction fit)
+    : id_(detail::register_method(std::move(name), std::move(help),
+                                  [fit = std::move(fit)](const detail::FitSpec& s) {
+                                    const detail::Centring& c = s.centring;
+                                    return fit(MethodInput{.rows = s.rows,
+                                                           .options = s.options,
+                                                           .seam_offsets = s.seam_offsets,
+                                                           .centred = c.centred,
+                                                           .centre = c.centre,
+                                                           .box = c.box,
+                                                           .roundoff = c.roundoff,
+                                                           .threads = c.threads});
+                                  })),
+      owns_(true) {}
+
+RegisteredMethod::~RegisteredMethod() {
+  if (owns_) detail::unregister_method(id_);
+}
+
+RegisteredMethod::RegisteredMethod(RegisteredMethod&& other) noexcept
+    : id_(other.id_), owns_(std::exchange(other.owns_, false)) {}
+
+RegisteredMethod& RegisteredMethod::operator=(RegisteredMethod&& other) noexcept {
+  if (this != &other) {
+    if (owns_) detail::unregister_method(id_);
+    id_ = other.id_;
+    owns_ = std::exchange(other.owns_, false);
+  }
+  return *this;
+}
+
+RegisteredRule::RegisteredRule(std::string name, std::string help, RowRuleFunction positions)
+    : id_(detail::register_rule(std::move(name), std::move(help), std::move(positions))),
+      owns_(true) {}
+
+RegisteredRule::~RegisteredRule() {
+  if (owns_) detail::unregister_rule(id_);
+}
+
+RegisteredRule::RegisteredRule(RegisteredRule&& other) noexcept
+    : id_(other.id_), owns_(std::exchange(other.owns_, false)) {}
+
+RegisteredRule& RegisteredRule::operator=(RegisteredRule&& other) noexcept {
+  if (this != &other) {
+    if (owns_) detail::unregister_rule(id_);
+    id_ = other.id_;
+    owns_ = std::exchange(other.owns_, false);
+  }
+  return *this;
+}
+
+}  // namespace sfit

@@ -1,11 +1,14 @@
-// The stages of fit_surface() as a state that can be updated after edits of some rows
-// (docs/method.md 7.7). Private: the public faces are fit_surface() and IncrementalFit.
+// The two-stage method (FitMethod::kSfit01) as a state that can be updated after edits of some
+// rows (docs/method.md 7.7). Private: the registry runs it (fit_registry.cpp), IncrementalFit
+// through sfit01_state() (a MethodState, fit_registry.h) under the driver.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "fit_driver.h"
+#include "fit_registry.h"
 #include "rerepresent.h"
 #include "sfit/surface_fit.h"
 
@@ -15,6 +18,8 @@ namespace sfit::detail {
 /// (surface_method.cpp) and FitMethod::kSfit01 (SurfaceFitter below, sfit01_method.cpp).
 FitResult fit_surface_search(const FitSpec& spec);
 FitResult fit_sfit01_method(const FitSpec& spec);
+/// kSfit01's state for IncrementalFit (MethodEntry::incremental): a SurfaceFitter.
+std::unique_ptr<MethodState> sfit01_state(const FitOptions& options);
 
 class SurfaceFitter {
  public:
@@ -24,17 +29,17 @@ class SurfaceFitter {
       o_.parametrization = Parametrization::kPaper;
   }
 
-  /// IncrementalFit's first fit: validated, aligned, checked as fit_surface() does; for a
-  /// method other than kSfit01 fit_surface()'s driver without the knot adaptation (update()
-  /// then refits in full the same way).
-  FitResult fit(const Rows& rows);
   const FitOptions& options() const { return o_; }
-  /// The same result as fit(rows) after the rows in `changed` were edited (the number of rows
-  /// unchanged), refitting only what the edit touches: the edited rows, later rows of their
-  /// block whose starting count changed, and their re-representations; the transverse stage
-  /// and the check are redone as fit() does them. Falls back to fit() where reuse is not
-  /// exact: a changed bounding box (the centring changes), a tightened budget, no state.
-  FitResult update(const Rows& rows, const std::vector<std::size_t>& changed);
+  /// The same result as fit_aligned(rows, {}, &centring) after the rows in `changed` were
+  /// edited (the number of rows unchanged, not re-ordered), refitting only what the edit
+  /// touches: the edited rows, later rows of their block whose starting count changed, and
+  /// their re-representations; the transverse stage and the check are redone as the fit does
+  /// them. Falls back to the fit in full where reuse is not exact: a changed bounding box (the
+  /// centring changes), a tightened budget, no state (forget()).
+  FitResult update_aligned(const Rows& rows, const std::vector<std::size_t>& changed,
+                           const Centring& centring);
+  /// The next update_aligned() fits in full.
+  void forget() { valid_ = false; }
   /// The method on rows validated and aligned already, with their fractional seams and, where
   /// given, their centring (of these very rows: the driver's); no final check (the driver's).
   FitResult fit_aligned(const Rows& rows, std::span<const double> seam_offsets,
@@ -46,7 +51,7 @@ class SurfaceFitter {
     given_ = nullptr;
     return r;
   }
-  /// Rows refitted by the last fit() or update().
+  /// Rows refitted by the last fit_aligned() or update_aligned().
   std::size_t rows_refitted() const { return rows_refitted_; }
   /// The stage budgets. false (the paper's): T/2 for the rows and T/2 for the columns. true:
   /// all of T for the rows, and the columns interpolate the rows' control points (the
@@ -57,10 +62,7 @@ class SurfaceFitter {
 
  private:
   struct Attempt;
-  // fit() and update() before the final check on the surface as written (final_check.h).
-  FitResult fit_centred(const Rows& rows);
-  FitResult update_centred(const Rows& rows, const std::vector<std::size_t>& changed);
-  FitResult fit_given(const Rows& rows);  // fit() on rows as given (no seam alignment)
+  FitResult fit_given(const Rows& rows);  // the fit on rows as given (aligned already)
   FitResult fit_rule(const Rows& rows, Parametrization requested);
   FitResult fit_rule_unguarded(const Rows& rows, Parametrization requested);  // no fold guard
   bool folds(const FitResult& r) const;
@@ -74,7 +76,7 @@ class SurfaceFitter {
   void copy_centred(const Rows& rows);  // centred_ = rows - centre_
 
   FitOptions o_;
-  Parametrization rule_ = Parametrization::kPaper;  // the rule of the last fit (fit())
+  Parametrization rule_ = Parametrization::kPaper;  // the rule of the last fit
   int threads_ = 1;
   BoundingBox box_;
   Point centre_ = Point::Zero();

@@ -1,6 +1,7 @@
 // The registries of fit methods and parameter rules (docs/method.md, "How a fit runs"):
 // every method and rule is a plug-in with a name, a help line and a function. The built-ins
-// register in fit_registry.cpp, one line each; a test or an application may register more.
+// register in fit_registry.cpp, one line each; a test or an application registers more through
+// the public face, sfit/fit_registry.h (RegisteredMethod, RegisteredRule).
 // FitOptions names one by its id: a FitMethod / Parametrization value, the built-ins' enum
 // values or the id register_*() handed out. The option table's allowed values of `method` and
 // `parameters` (and so the CLI's --help, Python, the editor and docs/options.md) list the
@@ -8,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -23,11 +25,32 @@ namespace sfit::detail {
 /// report (within_tolerance is the method's own verdict; the driver's final check decides).
 using MethodFunction = std::function<FitResult(const FitSpec&)>;
 
+/// A method's state between the fits of IncrementalFit (docs/method.md 7.7), for a method that
+/// can refit only what an edit of some rows touches. The driver runs it (run_fit(), fit_driver.h)
+/// as it runs MethodEntry::fit: on validated, aligned, centred rows, with the final check after.
+class MethodState {
+ public:
+  virtual ~MethodState() = default;
+  /// The method on `spec`, as MethodEntry::fit does it, keeping what update() may reuse.
+  virtual FitResult fit(const FitSpec& spec) = 0;
+  /// Exactly fit(spec) (bit for bit) after the rows in `changed` were edited (spec.rows: the
+  /// edited rows, as many as before and in their order), refitting only what the edits touch.
+  virtual FitResult update(const FitSpec& spec, const std::vector<std::size_t>& changed) = 0;
+  /// The next update() refits in full.
+  virtual void forget() = 0;
+  /// Rows whose curves the last fit() or update() refitted.
+  virtual std::size_t rows_refitted() const = 0;
+};
+/// A method's state for the options given (the driver's: seam and orient kKeep).
+using StateFunction = std::function<std::unique_ptr<MethodState>(const FitOptions&)>;
+
 struct MethodEntry {
   FitMethod id{};
   std::string name;  ///< the option value: "surface"
   std::string help;  ///< one line for the option table, without the name
   MethodFunction fit;
+  /// IncrementalFit's state where the method has one; empty: every edit refits in full.
+  StateFunction incremental;
 };
 
 /// Positions f_0 ... f_{N-1} of a row's points as fractions of the row (as
@@ -66,32 +89,5 @@ Parametrization register_rule(std::string name, std::string help, PositionFuncti
 /// Removes a registered method or rule (not a built-in); its name is free again.
 void unregister_method(FitMethod id);
 void unregister_rule(Parametrization id);
-
-/// A method (rule) registered for a scope, e.g. a test.
-class ScopedMethod {
- public:
-  ScopedMethod(std::string name, std::string help, MethodFunction fit)
-      : id_(register_method(std::move(name), std::move(help), std::move(fit))) {}
-  ~ScopedMethod() { unregister_method(id_); }
-  ScopedMethod(const ScopedMethod&) = delete;
-  ScopedMethod& operator=(const ScopedMethod&) = delete;
-  FitMethod id() const { return id_; }
-
- private:
-  FitMethod id_;
-};
-
-class ScopedRule {
- public:
-  ScopedRule(std::string name, std::string help, PositionFunction positions)
-      : id_(register_rule(std::move(name), std::move(help), std::move(positions))) {}
-  ~ScopedRule() { unregister_rule(id_); }
-  ScopedRule(const ScopedRule&) = delete;
-  ScopedRule& operator=(const ScopedRule&) = delete;
-  Parametrization id() const { return id_; }
-
- private:
-  Parametrization id_;
-};
 
 }  // namespace sfit::detail

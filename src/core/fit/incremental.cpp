@@ -1,13 +1,37 @@
+// IncrementalFit (sfit/incremental.h, docs/method.md 7.7): every fit through the driver
+// (fit_driver.h); a method with a state in the registry (MethodEntry::incremental: the
+// two-stage method) refits only the edited rows, any other refits in full.
 #include "sfit/incremental.h"
 
 #include <optional>
 #include <string>
 
+#include "fit_driver.h"
 #include "fit_monitor.h"
+#include "fit_registry.h"
 #include "sfit/error.h"
-#include "surface_fitter.h"
 
 namespace sfit {
+namespace detail {
+
+struct IncrementalState {
+  FitOptions options;
+  std::unique_ptr<MethodState> method;  // null: the method has none (every fit in full)
+  std::size_t rows_refitted = 0;
+
+  FitResult fit(const Rows& rows, const std::vector<std::size_t>* changed) {
+    if (!method) {
+      rows_refitted = rows.size();
+      return run_fit(rows, options, false);  // fit_surface() without the knot adaptation
+    }
+    FitResult r = run_fit(rows, options, *method, changed);
+    rows_refitted = method->rows_refitted();
+    return r;
+  }
+};
+
+}  // namespace detail
+
 namespace {
 
 [[noreturn]] void bad_place(const std::string& what, std::size_t row, std::size_t index) {
@@ -39,8 +63,18 @@ FitResult monitored(const FitOptions& o, F&& f) {
 }  // namespace
 
 IncrementalFit::IncrementalFit(Rows rows, FitOptions options)
-    : rows_(std::move(rows)), fitter_(std::make_unique<detail::SurfaceFitter>(std::move(options))) {
-  result_ = monitored(fitter_->options(), [&] { return fitter_->fit(rows_); });
+    : rows_(std::move(rows)), state_(std::make_unique<detail::IncrementalState>()) {
+  // The method's state from the registry (the driver's options: seam and orient kKeep).
+  // An unregistered method is the driver's usage error, after the rows' validation.
+  for (const detail::MethodEntry& e : detail::methods())
+    if (e.id == options.method && e.incremental) {
+      FitOptions mo = options;
+      mo.seam = SeamMode::kKeep;
+      mo.orient = OrientMode::kKeep;
+      state_->method = e.incremental(mo);
+    }
+  state_->options = std::move(options);
+  result_ = monitored(state_->options, [&] { return state_->fit(rows_, nullptr); });
 }
 
 IncrementalFit::~IncrementalFit() = default;
@@ -48,7 +82,7 @@ IncrementalFit::IncrementalFit(IncrementalFit&&) noexcept = default;
 IncrementalFit& IncrementalFit::operator=(IncrementalFit&&) noexcept = default;
 
 std::size_t IncrementalFit::rows_refitted() const {
-  return fitter_->rows_refitted();
+  return state_->rows_refitted;
 }
 
 const FitResult& IncrementalFit::apply(Rows edited, std::size_t row) {
@@ -57,7 +91,8 @@ const FitResult& IncrementalFit::apply(Rows edited, std::size_t row) {
     throw Error(ErrorCode::kUsage, "edits of weighted rows are not supported yet",
                 Place{.option = "weights"});
   // Throws before touching the state (a cancelled edit too).
-  FitResult r = monitored(fitter_->options(), [&] { return fitter_->update(edited, {row}); });
+  const std::vector<std::size_t> changed{row};
+  FitResult r = monitored(state_->options, [&] { return state_->fit(edited, &changed); });
   rows_ = std::move(edited);
   result_ = std::move(r);
   return result_;

@@ -33,11 +33,23 @@ struct FitSpec {
   const FitOptions& options;             ///< seam and orient kKeep (the rows are aligned)
   std::span<const double> seam_offsets;  ///< fractional seams of the aligned rows; empty: none
   const Centring& centring;              ///< of `rows`
+  /// A two-stage method's budgets: false (the paper's) T/2 for the rows and T/2 for the
+  /// columns; true all of T for the rows, the columns interpolating their control points
+  /// (rows_at_t.h). Other methods ignore it.
+  bool rows_take_all = false;
 };
 
 /// fit_surface() (progress and cancel set up by the caller): validate, align, centre, the
 /// registered method options.method, the final check; knots adaptive when `adapt_knots`.
 FitResult run_fit(const Rows& rows, const FitOptions& options, bool adapt_knots = true);
+
+class MethodState;  // fit_registry.h
+/// IncrementalFit's fits (docs/method.md 7.7): run_fit() without the knot adaptation, the
+/// method run as `state` (MethodEntry::incremental): update(changed) where `changed` is given
+/// and the alignment leaves the rows in their order; otherwise fit() in full, and after rows
+/// re-ordered by the alignment the state forgets (the next edit refits in full).
+FitResult run_fit(const Rows& rows, const FitOptions& options, MethodState& state,
+                  const std::vector<std::size_t>* changed);
 
 /// Test hook: how many times sfit::validate() ran in this process.
 long validations();
