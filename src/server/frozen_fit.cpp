@@ -1,0 +1,239 @@
+#include "frozen_fit.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "sfit/surface_eval.h"
+
+namespace sfit::server {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The weight of the smoothness term (the control net's second differences along u and v)
+// relative to the data term's mean diagonal: it only decides control points that no data
+// point determines (a knot span without data), where the system would be singular, and moves
+// the others by about this fraction of T's scale, far below the check's resolution.
+constexpr double kSmoothing = 1e-8;
+
+}  // namespace
+
+struct FrozenFit::Impl {
+  FitResult at;  // the full fit the drag starts from: surface (template), u, v, report
+  std::vector<std::size_t> offsets;
+  Point centre = Point::Zero();
+  int p = 0, q = 0, nu = 0, nv = 0;
+  std::vector<int> fu, fv;     // per point: first control point along u, v (distinct index)
+  std::vector<double> bu, bv;  // per point: p + 1, q + 1 basis values
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+
+  // Calls f(c, w) for the (p + 1)(q + 1) control points c point m's equation touches.
+  template <class F>
+  void each(std::size_t m, F&& f) const {
+    const double* a = &bu[m * (p + 1)];
+    const double* b = &bv[m * (q + 1)];
+    for (int x = 0; x <= p; ++x) {
+      const int i = (fu[m] + x) % nu;
+      for (int y = 0; y <= q; ++y) f(i * nv + (fv[m] + y) % nv, a[x] * b[y]);
+    }
+  }
+};
+
+FrozenFit::FrozenFit(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+FrozenFit::~FrozenFit() = default;
+
+std::shared_ptr<const FrozenFit> FrozenFit::make(const Rows& rows, const FitResult& at,
+                                                 std::string& why) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Surface& s = at.surface;
+  const std::size_t n = static_cast<std::size_t>(s.count_u) * s.count_v;
+  if (rows.weighted()) {
+    why = "weighted rows";
+    return nullptr;
+  }
+  if (n > kMaxUnknowns) {
+    why = std::to_string(s.count_u) + " x " + std::to_string(s.count_v) +
+          " control points: more than the frozen refit factorises (" +
+          std::to_string(kMaxUnknowns) + ")";
+    return nullptr;
+  }
+  const std::size_t total = rows.total_points();
+  if (at.u.size() != total ||
+      (at.v_points.empty() ? at.v.size() != rows.size() : at.v_points.size() != total)) {
+    why = "the fit's parameters do not match the rows";
+    return nullptr;
+  }
+  auto im = std::make_unique<Impl>();
+  Impl& m = *im;
+  m.at = at;
+  m.offsets = rows.offsets();
+  m.p = s.degree_u;
+  m.q = s.degree_v;
+  m.nu = s.count_u;
+  m.nv = s.count_v;
+  const BoundingBox box = bounding_box(rows);
+  m.centre = 0.5 * (box.min + box.max);
+  std::vector<double> vp(total);
+  for (std::size_t j = 0; j < rows.size(); ++j)
+    for (std::size_t k = m.offsets[j]; k < m.offsets[j + 1]; ++k) vp[k] = at.point_v(j, k);
+  const DirectionBasis du = direction_basis(s, true, at.u, 0);
+  const DirectionBasis dv = direction_basis(s, false, vp, 0);
+  m.fu.resize(total);
+  m.fv.resize(total);
+  for (std::size_t k = 0; k < total; ++k) {
+    m.fu[k] = du.first[k] % m.nu;
+    m.fv[k] = dv.first[k] % m.nv;
+  }
+  m.bu = du.d;
+  m.bv = dv.d;
+
+  // The fit's own check, at these parameters: a fit made on reordered rows (seams aligned,
+  // rows reversed) does not reproduce it, and its parameters are not the rows'.
+  const std::vector<Point>& pts = rows.points();
+  Point worst = Point::Zero();
+  for (std::size_t k = 0; k < total; ++k) {
+    Point sk = Point::Zero();
+    m.each(k, [&](int c, double w) { sk += w * s.control[c]; });
+    worst = worst.cwiseMax((sk - pts[k]).cwiseAbs());
+  }
+  const double scale = std::max(box.diagonal(), 1e-300);
+  if (!((worst - at.report.max_deviation).cwiseAbs().maxCoeff() <=
+        1e-3 * at.report.tolerance.maxCoeff() + 1e-9 * scale)) {
+    why =
+        "the fit's parameters do not reproduce its check (rows reordered: seams aligned or "
+        "rows reversed)";
+    return nullptr;
+  }
+
+  // The normal equations (data term plus the smoothness term), by neighbour offsets.
+  const int hu = std::max(m.p, 2), hv = std::max(m.q, 2);
+  const int wv = 2 * hv + 1, width = (2 * hu + 1) * wv;
+  std::vector<double> band(n * width, 0.0);
+  const auto slot = [&](int c, int di, int dj) -> double& {
+    return band[static_cast<std::size_t>(c) * width + (di + hu) * wv + (dj + hv)];
+  };
+  for (std::size_t k = 0; k < total; ++k) {
+    const double* a = &m.bu[k * (m.p + 1)];
+    const double* b = &m.bv[k * (m.q + 1)];
+    for (int x = 0; x <= m.p; ++x)
+      for (int y = 0; y <= m.q; ++y) {
+        const int c = ((m.fu[k] + x) % m.nu) * m.nv + (m.fv[k] + y) % m.nv;
+        const double w = a[x] * b[y];
+        for (int x2 = 0; x2 <= m.p; ++x2)
+          for (int y2 = 0; y2 <= m.q; ++y2) slot(c, x2 - x, y2 - y) += w * a[x2] * b[y2];
+      }
+  }
+  double diag = 0;
+  for (std::size_t c = 0; c < n; ++c) diag += slot(static_cast<int>(c), 0, 0);
+  const double lambda = kSmoothing * diag / static_cast<double>(n);
+  // Second differences of the net along u (along v likewise), wrapped where periodic.
+  const auto smooth = [&](bool along_u) {
+    const int len = along_u ? m.nu : m.nv, lines = along_u ? m.nv : m.nu;
+    const bool wrap = along_u ? s.periodic_u : s.periodic_v;
+    for (int l = 0; l < lines; ++l)
+      for (int i = wrap ? 0 : 1; i < (wrap ? len : len - 1); ++i) {
+        const int at3[3] = {(i - 1 + len) % len, i, (i + 1) % len};
+        const double r[3] = {1, -2, 1};
+        for (int e = 0; e < 3; ++e)
+          for (int f = 0; f < 3; ++f) {
+            const int c = along_u ? at3[e] * m.nv + l : l * m.nv + at3[e];
+            slot(c, along_u ? f - e : 0, along_u ? 0 : f - e) += lambda * r[e] * r[f];
+          }
+      }
+  };
+  smooth(true);
+  smooth(false);
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(n * static_cast<std::size_t>(m.p + m.q + 2) * 4);
+  for (int c = 0; c < static_cast<int>(n); ++c) {
+    const int i = c / m.nv, j = c % m.nv;
+    for (int di = -hu; di <= hu; ++di)
+      for (int dj = -hv; dj <= hv; ++dj) {
+        const double val = slot(c, di, dj);
+        if (val == 0) continue;
+        const int i2 = (i + di + m.nu) % m.nu, j2 = (j + dj + m.nv) % m.nv;
+        const int c2 = i2 * m.nv + j2;
+        if (c2 >= c) trip.emplace_back(c2, c, val);  // the lower triangle
+      }
+  }
+  Eigen::SparseMatrix<double> N(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  N.setFromTriplets(trip.begin(), trip.end());
+  m.llt.compute(N);
+  if (m.llt.info() != Eigen::Success) {
+    why = "the frozen normal equations are singular";
+    return nullptr;
+  }
+  auto out = std::shared_ptr<FrozenFit>(new FrozenFit(std::move(im)));
+  out->seconds_ = seconds_since(t0);
+  return out;
+}
+
+FitResult FrozenFit::refit(const Rows& rows) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Impl& m = *impl_;
+  const std::size_t n = static_cast<std::size_t>(m.nu) * m.nv;
+  const std::vector<Point>& pts = rows.points();
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(n), 3);
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const Eigen::RowVector3d d = (pts[k] - m.centre).transpose();
+    m.each(k, [&](int c, double w) { rhs.row(c) += w * d; });
+  }
+  const Eigen::MatrixX3d x = m.llt.solve(rhs);
+  FitResult out;
+  out.surface = m.at.surface;
+  for (std::size_t c = 0; c < n; ++c)
+    out.surface.control[c] = x.row(static_cast<Eigen::Index>(c)).transpose() + m.centre;
+  out.u = m.at.u;
+  out.v = m.at.v;
+  out.v_points = m.at.v_points;
+  FitReport& r = out.report;
+  r = m.at.report;
+  const Point t = r.tolerance;
+  const double floor = std::max(r.roundoff, std::numeric_limits<double>::min());
+  r.max_deviation = Point::Zero();
+  r.within_tolerance = true;
+  double most = -1;
+  for (std::size_t j = 0; j < rows.size(); ++j)
+    for (std::size_t k = m.offsets[j]; k < m.offsets[j + 1]; ++k) {
+      Eigen::RowVector3d sk = Eigen::RowVector3d::Zero();
+      m.each(k, [&](int c, double w) { sk += w * x.row(c); });
+      const Point dev = sk.transpose() - (pts[k] - m.centre);
+      double used = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double e = std::abs(dev[a]);
+        r.max_deviation[a] = std::max(r.max_deviation[a], e);
+        if (!(e <= (t[a] > 0 ? t[a] : r.roundoff))) r.within_tolerance = false;
+        used = std::max(used, e / std::max(t[a], floor));
+      }
+      if (used > most) {
+        most = used;
+        r.worst_row = static_cast<long>(j);
+        r.worst_index = static_cast<long>(k - m.offsets[j]);
+        r.worst_deviation = dev;
+      }
+    }
+  r.norm = FitNorm::kL2;
+  r.pairs_tried = 0;
+  r.solves = 1;
+  r.stop_reason = "quick refit: counts, knots and parameters frozen for the drag";
+  r.seconds = seconds_since(t0);
+  return out;
+}
+
+std::vector<double> FrozenFit::influence(std::size_t row, std::size_t index) const {
+  const Impl& m = *impl_;
+  const std::size_t n = static_cast<std::size_t>(m.nu) * m.nv;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+  m.each(m.offsets[row] + index, [&](int c, double w) { rhs[c] += w; });
+  const Eigen::VectorXd g = m.llt.solve(rhs);
+  return {g.data(), g.data() + g.size()};
+}
+
+}  // namespace sfit::server
