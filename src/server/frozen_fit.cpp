@@ -1,5 +1,6 @@
 #include "frozen_fit.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
@@ -32,7 +33,29 @@ struct FrozenFit::Impl {
   int p = 0, q = 0, nu = 0, nv = 0;
   std::vector<int> fu, fv;     // per point: first control point along u, v (distinct index)
   std::vector<double> bu, bv;  // per point: p + 1, q + 1 basis values
+  // Eigen's simplicial Cholesky (AMD ordering): 0.27 s at 84 x 74 control points and 10^4
+  // points (load 6), where CHOLMOD's supernodal one took 0.85-0.93 s.
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  // Rows that share their u, one v per row (a grid at the uniform or paper rule): the normal
+  // matrix is the Kronecker product Gv (x) Gu of the rows' and the columns' Gram matrices, and
+  // N x = r is X = Gu^-1 R Gv^-1 with R, X as nu x nv matrices: two small factorisations
+  // instead of one of nu nv unknowns (0.7 s at 92 x 94 control points, load 10).
+  bool separable = false;
+  Eigen::LLT<Eigen::MatrixXd> gu, gv;
+  bool make_separable(const Rows& rows, const FitResult& at);
+
+  // N^-1 rhs, column by column (rhs: nu nv rows, control point i * nv + j).
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const {
+    if (!separable) return llt.solve(rhs);
+    Eigen::MatrixXd out(rhs.rows(), rhs.cols());
+    using Grid = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    for (Eigen::Index a = 0; a < rhs.cols(); ++a) {
+      const Grid r = Eigen::Map<const Grid>(rhs.col(a).data(), nu, nv);
+      const Grid x = gv.solve(gu.solve(r).transpose()).transpose();
+      Eigen::Map<Grid>(out.col(a).data(), nu, nv) = x;
+    }
+    return out;
+  }
 
   // Calls f(c, w) for the (p + 1)(q + 1) control points c point m's equation touches.
   template <class F>
@@ -45,6 +68,43 @@ struct FrozenFit::Impl {
     }
   }
 };
+
+// The Kronecker case (separable): every row has the same u (and length), one v per row, and
+// both Gram matrices positive definite (every span has data); false where not.
+bool FrozenFit::Impl::make_separable(const Rows& rows, const FitResult& at) {
+  Impl& m = *this;
+  const std::size_t len = rows[0].size();
+  if (!at.v_points.empty() || std::max(m.nu, m.nv) > 2000) return false;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    if (rows[j].size() != len) return false;
+    for (std::size_t k = 0; k < len; ++k)
+      if (at.u[m.offsets[j] + k] != at.u[k]) return false;
+  }
+  Eigen::MatrixXd gu = Eigen::MatrixXd::Zero(m.nu, m.nu), gv = Eigen::MatrixXd::Zero(m.nv, m.nv);
+  for (std::size_t k = 0; k < len; ++k)
+    for (int x = 0; x <= m.p; ++x)
+      for (int x2 = 0; x2 <= m.p; ++x2)
+        gu((m.fu[k] + x) % m.nu, (m.fu[k] + x2) % m.nu) +=
+            m.bu[k * (m.p + 1) + x] * m.bu[k * (m.p + 1) + x2];
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const std::size_t k = m.offsets[j];  // the row's v: that of its first point
+    for (int y = 0; y <= m.q; ++y)
+      for (int y2 = 0; y2 <= m.q; ++y2)
+        gv((m.fv[k] + y) % m.nv, (m.fv[k] + y2) % m.nv) +=
+            m.bv[k * (m.q + 1) + y] * m.bv[k * (m.q + 1) + y2];
+  }
+  m.gu.compute(gu);
+  m.gv.compute(gv);
+  if (m.gu.info() != Eigen::Success || m.gv.info() != Eigen::Success) return false;
+  // A positive pivot may still be round-off: each factor must reproduce its matrix's identity.
+  const auto sound = [](const Eigen::LLT<Eigen::MatrixXd>& f, const Eigen::MatrixXd& g) {
+    const Eigen::MatrixXd i = Eigen::MatrixXd::Identity(g.rows(), g.cols());
+    return (g * f.solve(i) - i).cwiseAbs().maxCoeff() <= 1e-8;
+  };
+  if (!sound(m.gu, gu) || !sound(m.gv, gv)) return false;
+  m.separable = true;
+  return true;
+}
 
 FrozenFit::FrozenFit(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 FrozenFit::~FrozenFit() = default;
@@ -110,6 +170,12 @@ std::shared_ptr<const FrozenFit> FrozenFit::make(const Rows& rows, const FitResu
         "the fit's parameters do not reproduce its check (rows reordered: seams aligned or "
         "rows reversed)";
     return nullptr;
+  }
+
+  if (m.make_separable(rows, at)) {
+    auto out = std::shared_ptr<FrozenFit>(new FrozenFit(std::move(im)));
+    out->seconds_ = seconds_since(t0);
+    return out;
   }
 
   // The normal equations (data term plus the smoothness term), by neighbour offsets.
@@ -185,7 +251,7 @@ FitResult FrozenFit::refit(const Rows& rows) const {
     const Eigen::RowVector3d d = (pts[k] - m.centre).transpose();
     m.each(k, [&](int c, double w) { rhs.row(c) += w * d; });
   }
-  const Eigen::MatrixX3d x = m.llt.solve(rhs);
+  const Eigen::MatrixX3d x = m.solve(rhs);
   FitResult out;
   out.surface = m.at.surface;
   for (std::size_t c = 0; c < n; ++c)
@@ -232,7 +298,7 @@ std::vector<double> FrozenFit::influence(std::size_t row, std::size_t index) con
   const std::size_t n = static_cast<std::size_t>(m.nu) * m.nv;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
   m.each(m.offsets[row] + index, [&](int c, double w) { rhs[c] += w; });
-  const Eigen::VectorXd g = m.llt.solve(rhs);
+  const Eigen::VectorXd g = m.solve(rhs);
   return {g.data(), g.data() + g.size()};
 }
 

@@ -75,6 +75,7 @@ json drag_influence(const Session& session, std::size_t row, std::size_t index) 
   j["point"] = {p0.x(), p0.y(), p0.z()};
   j["surface"] = packed_surface_json(base.surface, Pack::kF64);
   j["influence"] = base64(reinterpret_cast<const unsigned char*>(g.data()), g.size() * sizeof g[0]);
+  j["frozen_seconds"] = frozen->seconds();  // its factorisation, once per full fit
   j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return j;
 }
