@@ -152,6 +152,41 @@ TEST(DragInfluence, PredictsAdaptiveKnots) {
   expect_predicts(s, 3, 4);
 }
 
+// Closed rows (a periodic direction u): the frozen refit wraps its basis around the seam. With
+// the seams kept the fit's parameters are the rows' own, and the drag is predicted.
+TEST(DragInfluence, PredictsClosedRows) {
+  Rows rows;
+  for (int j = 0; j < 12; ++j) {
+    for (int k = 0; k < 30; ++k) {
+      const double a = 2 * M_PI * k / 30, r = 10 + 0.5 * std::sin(3 * a + 0.4 * j);
+      rows.push_point(Point(r * std::cos(a), r * std::sin(a), 2.0 * j + 0.1 * std::cos(a)));
+    }
+    rows.end_row();
+  }
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, 1e-3);
+  o.closed_u = true;
+  o.seam = SeamMode::kKeep;
+  o.orient = OrientMode::kKeep;
+  Session s(std::move(rows), o);
+  ASSERT_TRUE(s.result().surface.periodic_u);
+  expect_predicts(s, 5, 0);  // the seam's own point
+  expect_predicts(s, 7, 29);
+}
+
+// Where the frozen refit cannot be made the server says why (and the drag refits as before).
+TEST(DragInfluence, NoneForWeightedRows) {
+  Rows rows = terrain(30, 40);
+  rows.set_weights(std::vector<double>(rows.total_points(), 2.0));
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, 1e-3);
+  Session s(std::move(rows), o);
+  const nlohmann::json j = drag_influence(s, 3, 4);
+  EXPECT_FALSE(j["linear"].get<bool>());
+  EXPECT_EQ(j["why"].get<std::string>(), "weighted rows") << j.dump();
+  EXPECT_FALSE(j.contains("influence"));
+}
+
 TEST(DragInfluence, ANonexistentPointIsAUsageError) {
   Session s = session_at(Parametrization::kUniform);
   try {
