@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sfit/error.h"
+#include "sfit/surface_eval.h"
 
 namespace sfit::server {
 namespace {
@@ -103,6 +104,38 @@ void expect_predicts(Session& s, std::size_t row, std::size_t index) {
         worst =
             worst.cwiseMax((q.evaluate(r.u[k], r.point_v(jr, k)) - rows.points()[k]).cwiseAbs());
     EXPECT_LE((worst - r.report.max_deviation).cwiseAbs().maxCoeff(), 1e-9 * big);
+    // Least squares: the residual is orthogonal to every control point's basis function
+    // (B^T (D - S) = 0, up to the smoothness term of relative weight 1e-8), checked with the
+    // public evaluation, independently of the refit's solver.
+    {
+      const std::size_t n = static_cast<std::size_t>(q.count_u) * q.count_v;
+      std::vector<Point> bt(n, Point::Zero());
+      std::vector<double> scale(n, 0.0);
+      const BoundingBox box = bounding_box(rows);
+      const Point centre = 0.5 * (box.min + box.max);
+      for (std::size_t jr = 0; jr < rows.size(); ++jr)
+        for (std::size_t k = rows.offsets()[jr]; k < rows.offsets()[jr + 1]; ++k) {
+          const double u[1] = {r.u[k]}, v[1] = {r.point_v(jr, k)};
+          const DirectionBasis bu = direction_basis(q, true, u, 0);
+          const DirectionBasis bv = direction_basis(q, false, v, 0);
+          const Point res = rows.points()[k] - q.evaluate(u[0], v[0]);
+          for (int x = 0; x <= q.degree_u; ++x)
+            for (int y = 0; y <= q.degree_v; ++y) {
+              const std::size_t c =
+                  static_cast<std::size_t>((bu.first[0] + x) % q.count_u) * q.count_v +
+                  (bv.first[0] + y) % q.count_v;
+              const double w = bu.d[x] * bv.d[y];
+              bt[c] += w * res;
+              scale[c] += w * (rows.points()[k] - centre).norm();
+            }
+        }
+      double worst_bt = 0, big_scale = 0;
+      for (std::size_t c = 0; c < n; ++c) {
+        worst_bt = std::max(worst_bt, bt[c].cwiseAbs().maxCoeff());
+        big_scale = std::max(big_scale, scale[c]);
+      }
+      EXPECT_LE(worst_bt, 1e-6 * big_scale) << "B^T (D - S) of the least-squares refit";
+    }
     EXPECT_EQ(r.report.within_tolerance,
               (worst.array() <= r.report.tolerance.array() + 1e-9 * big).all());
   }
@@ -140,6 +173,23 @@ TEST(DragInfluence, PredictsEveryRuleAndMethod) {
   ASSERT_EQ(s.result().report.method, FitMethod::kSfit01);
   SCOPED_TRACE("the two stages");
   expect_predicts(s, 20, 30);
+}
+
+// A grid at the paper rule after an edit: the edited row's u is its own, the others share
+// theirs (the Kronecker refit with its correction for that row's columns).
+TEST(DragInfluence, PredictsAGridWithAnEditedRow) {
+  Rows rows = terrain(30, 40);
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, 1e-3);
+  o.parametrization = Parametrization::kPaper;
+  o.method = FitMethod::kSfit01;
+  Session s(std::move(rows), o);
+  const Point p = s.rows()[14][20];
+  s.move(14, 20, p + Point(0, 0, 6), MovePhase::kOnce);
+  const FitResult& r = s.result();
+  ASSERT_NE(r.u[s.rows().offsets()[14] + 5], r.u[s.rows().offsets()[3] + 5]) << "the row's own u";
+  expect_predicts(s, 14, 20);
+  expect_predicts(s, 3, 7);
 }
 
 TEST(DragInfluence, PredictsAdaptiveKnots) {
