@@ -99,10 +99,12 @@ struct FrozenFit::Impl {
 // most rows, the others touching at most kMaxColumns columns of control points, and the
 // factors sound (every span has data); false where not.
 bool FrozenFit::Impl::make_separable(const Rows& rows, const FitResult& at) {
-  constexpr int kMaxColumns = 12;
+  // Bounds on the dense work: Gu, Gv inverted (nu^3, nv^3) and I + E K factorised
+  // (nu |J|)^3; beyond them the sparse factorisation.
+  constexpr int kMaxColumns = 12, kMaxCount = 500, kMaxCorrection = 800;
   Impl& m = *this;
   const std::size_t len = rows[0].size(), nrows = rows.size();
-  if (!at.v_points.empty() || std::max(m.nu, m.nv) > 2000) return false;
+  if (!at.v_points.empty() || std::max(m.nu, m.nv) > kMaxCount) return false;
   for (std::size_t j = 0; j < nrows; ++j)
     if (rows[j].size() != len) return false;
   const auto same = [&](std::size_t a, std::size_t b) {
@@ -136,7 +138,9 @@ bool FrozenFit::Impl::make_separable(const Rows& rows, const FitResult& at) {
   }
   std::sort(cols_of.begin(), cols_of.end());
   cols_of.erase(std::unique(cols_of.begin(), cols_of.end()), cols_of.end());
-  if (cols_of.size() > static_cast<std::size_t>(kMaxColumns)) return false;
+  if (cols_of.size() > static_cast<std::size_t>(kMaxColumns) ||
+      static_cast<long>(cols_of.size()) * m.nu > kMaxCorrection)
+    return false;
   const Eigen::MatrixXd gu0 = gram(base);
   Eigen::MatrixXd gv0 = Eigen::MatrixXd::Zero(m.nv, m.nv);
   for (std::size_t j = 0; j < nrows; ++j) {
@@ -181,7 +185,9 @@ bool FrozenFit::Impl::make_separable(const Rows& rows, const FitResult& at) {
         k.block(a * m.nu, b * m.nu, m.nu, m.nu) = iv(cols_of[a], cols_of[b]) * iu;
     const Eigen::MatrixXd c = Eigen::MatrixXd::Identity(mm, mm) + m.e * k;
     m.cap.compute(c);
-    if (!sound(c, m.cap.solve(Eigen::MatrixXd::Identity(mm, mm)))) return false;
+    // Sound where it solves a system of known answer (one column of ones) to 1e-8.
+    const Eigen::VectorXd ones = Eigen::VectorXd::Ones(mm);
+    if (!((m.cap.solve(c * ones) - ones).cwiseAbs().maxCoeff() <= 1e-8)) return false;
   }
   m.separable = true;
   return true;
