@@ -90,6 +90,10 @@ void Session::drag_move(Drag& d, std::size_t row, std::size_t index, const Point
     rows_refitted_ = d.quick->rows_refitted();
     return;
   }
+  if (!to.allFinite())  // as fit_surface() refuses it; the state stays as it was
+    throw Error(ErrorCode::kInputData, "coordinate is not a finite number",
+                Place{.row = static_cast<long>(row), .point = static_cast<long>(index)},
+                {to.x(), to.y(), to.z()});
   d.rows.mutable_row(row)[index] = to;
   d.result = d.frozen->refit(d.rows);
   rows_refitted_ = d.rows.size();  // one solve for the whole surface

@@ -237,6 +237,25 @@ TEST(DragInfluence, NoneForWeightedRows) {
   EXPECT_FALSE(j.contains("influence"));
 }
 
+// A frozen drag step to a coordinate that is not a number is refused as fit_surface() refuses
+// it, and the drag's state stays where it was.
+TEST(DragInfluence, AFrozenDragStepRefusesANonFiniteCoordinate) {
+  Session s = session_at(Parametrization::kUniform);
+  const Point p = s.rows()[4][5];
+  s.move(4, 5, p + Point(0, 0, 1), MovePhase::kDrag);
+  const long v = s.version();
+  try {
+    s.move(4, 5, Point(p.x(), std::nan(""), p.z()), MovePhase::kDrag);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kInputData);
+  }
+  EXPECT_EQ(s.version(), v);
+  EXPECT_EQ(s.shown_rows()[4][5], p + Point(0, 0, 1));
+  EXPECT_TRUE(s.shown().surface.control[0].allFinite());
+  s.finish_drag();
+}
+
 TEST(DragInfluence, ANonexistentPointIsAUsageError) {
   Session s = session_at(Parametrization::kUniform);
   try {
