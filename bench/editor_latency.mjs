@@ -77,10 +77,10 @@ for (const [row, index] of [[Math.floor(M / 2), Math.floor(N / 2)], [Math.floor(
   await page.waitForFunction(() => window.sfitEditor.idle && window.sfitEditor.state.final && !window.sfitEditor.state.dragging &&
     !window.sfitEditor.searching, { timeout: 120000 });
   await page.evaluate(() => window.sfitEditor.nextFrame());  // the last latency recorded
-  const { lat, times, dropped, counts, checks, infl } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
+  const { lat, times, dropped, counts, checks, infl, inflServer } = await page.evaluate(() => ({ lat: window.sfitEditor.latencies,
     times: window.sfitEditor.moves, dropped: window.sfitEditor.dropped.length, counts: window.sfitEditor.state.report.control_points,
-    checks: window.sfitEditor.predictionChecks.splice(0), infl: window.sfitEditor.influenceTimes }));
-  results.push({ moves, lat, times, dropped, counts, frames, checks, infl });
+    checks: window.sfitEditor.predictionChecks.splice(0), infl: window.sfitEditor.influenceTimes, inflServer: window.sfitEditor.influence }));
+  results.push({ moves, lat, times, dropped, counts, frames, checks, infl, inflServer });
 }
 // One latency per move: where a move was drawn twice (the server's answer, then the page's
 // prediction once the influence arrived during the drag), the first frame.
@@ -99,7 +99,9 @@ results.forEach((r, k) => {
     `server answers checked against their prediction ${r.checks.length} (largest difference ${Math.max(0, ...r.checks.map((c) => c.off)).toExponential(1)} ` +
     `of the control points' size); the first five moves shown ${d.slice().sort((a, b) => a.t - b.t).slice(0, 5).map((l) => l.ms.toFixed(0) + (l.predicted ? "" : " (server)")).join(", ")} ms (the first: waiting for the frame before ` +
     `${(d.slice().sort((a, b) => a.t - b.t)[0] || {}).slot?.toFixed(0)}, drawing ${(d.slice().sort((a, b) => a.t - b.t)[0] || {}).draw?.toFixed(0)}); influence asked ` +
-    `${r.infl ? `${r.infl.asked.toFixed(0)} ms before the press, there ${r.infl.got.toFixed(0)} ms after it` : "never"}`);
+    `${r.infl ? `${r.infl.asked.toFixed(0)} ms before the press, there ${r.infl.got.toFixed(0)} ms after it` : "never"}` +
+    (r.inflServer ? ` (the last: ${r.inflServer.ms?.toFixed(0)} ms in all, the server ${(1000 * (r.inflServer.seconds || 0)).toFixed(0)} ms, ` +
+      `its frozen refit factorised in ${(1000 * (r.inflServer.frozenSeconds || 0)).toFixed(0)} ms${r.inflServer.linear ? "" : `; not linear: ${r.inflServer.why}`})` : ""));
 });
 const drag = dragLat.map((l) => l.ms);
 const fin = results.flatMap((r) => r.lat.filter((l) => l.final).map((l) => l.ms));

@@ -192,8 +192,10 @@ canvas.addEventListener(moveEvent, (e) => {
   if (d.pred) S.fns.showPrediction({ to, t: e.timeStamp });
   S.fns.queueMove({ row: d.row, index: d.index, to, phase: "drag", t: e.timeStamp, pk: d.pred || undefined });
   // Drawn with the refit of this step (or a newer one), whose answer comes next: a frame of
-  // the moved point alone would only delay that one on a software rasteriser.
-  if (!d.pred && !S.fns.moveInFlight()) redraw();
+  // the moved point alone would only delay that one on a software rasteriser. Nor while the
+  // influence asked for is on its way (the prediction draws the newest move when it comes):
+  // the frames would take the cores its factorisation needs (docs/editor.md, "Latency").
+  if (!d.pred && !S.fns.moveInFlight() && !predict.asked()) redraw();
 });
 
 function finishDrag() {

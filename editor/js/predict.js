@@ -1,15 +1,17 @@
-// The drag's prediction (docs/editor.md, "Latency"). With the counts held for the drag (the
-// quick refit) and parameters that do not move with the points, the quick refit is least
-// squares at fixed counts, knots and parameters: a linear map of the data. Moving point k by d
-// moves every control point by g_k d, where g_k is the fit of data that are zero but for 1 at
-// point k. When a point is selected the page asks the server for g_k and for S0, the quick
-// refit of the rows as they are (POST /api/influence); while that point is dragged it draws
+// The drag's prediction (docs/editor.md, "Latency"). With the counts, knots and parameters of
+// the full fit frozen for the drag (the quick refit, src/server/frozen_fit.h), the quick refit
+// is least squares at fixed counts, knots and parameters: a linear map of the data. Moving
+// point k by d moves every control point by g_k d, where g_k is the fit of data that are zero but
+// for 1 at point k. When a point is selected the page asks the server for g_k and for S0, the
+// quick refit of the rows as they are (POST /api/influence); while that point is dragged it draws
 // S0 + g_k d at every pointer move itself, with no request on the critical path. The moves
 // still go to the server (latest wins); each answer is compared with the prediction of the
 // same move (it must agree within 1e-9 of the control points' size: the prediction IS the
 // refit) and replaces the page's state; where it does not agree, the prediction stops for the
-// drag and the answers are drawn. Where the refit is not linear (the server says why), the
-// drag waits for the server's answers as before.
+// drag and the answers are drawn. The server's quick refit of a drag is least squares at the
+// counts, knots and parameters of the full fit frozen at the drag's start, whatever made it, so
+// it is linear but where the frozen refit cannot be made (the server says why: weighted rows,
+// rows the fit reordered, too many control points); the drag then waits for its answers.
 import { S, hook } from "./store.js";
 import * as api from "./api.js";
 import { doubles } from "./pack.js";
@@ -38,7 +40,8 @@ export function prefetch() {
       Object.assign(k, { p0: j.point, base: doubles(cp), g: doubles(j.influence), nu: shape[0], nv: shape[1], header });
     }
     known = k;
-    hook.influence = { row: k.row, index: k.index, version: k.version, linear: k.linear, why: k.why };
+    hook.influence = { row: k.row, index: k.index, version: k.version, linear: k.linear, why: k.why,
+      seconds: j.seconds, frozenSeconds: j.frozen_seconds, ms: performance.now() - t0 };
     if (hook.pressT !== undefined && !hook.influenceTimes) hook.influenceTimes = { asked: hook.pressT - t0, got: performance.now() - hook.pressT };
     if (onArrival) onArrival(k);
     settle();

@@ -39,6 +39,7 @@ Session::Session(Rows rows, FitOptions options) : options_(std::move(options)) {
 }
 
 void Session::refit(Rows rows, const FitOptions& options) {
+  ++fit_serial_;
   std::string why;
   fit_ = fit_or_best_effort(std::move(rows), options, why);
   best_effort_ = std::move(why);
@@ -46,6 +47,7 @@ void Session::refit(Rows rows, const FitOptions& options) {
 }
 
 void Session::set_row(std::size_t row, const std::vector<Point>& points) {
+  ++fit_serial_;
   if (best_effort_.empty()) {
     try {
       fit_->replace_row(row, points);
@@ -65,11 +67,36 @@ void Session::set_row(std::size_t row, const std::vector<Point>& points) {
 Session::~Session() = default;
 
 const FitResult& Session::shown() const {
-  return drag_ && !drag_->final ? drag_->quick->result() : fit_->result();
+  if (!drag_ || drag_->final) return fit_->result();
+  return drag_->quick ? drag_->quick->result() : drag_->result;
 }
 
 const Rows& Session::shown_rows() const {
-  return drag_ && !drag_->final ? drag_->quick->rows() : fit_->rows();
+  return drag_ && !drag_->final ? drag_rows(*drag_) : fit_->rows();
+}
+
+std::shared_ptr<const FrozenFit> Session::frozen(std::string* why) const {
+  if (frozen_serial_ != fit_serial_) {
+    frozen_ = FrozenFit::make(fit_->rows(), fit_->result(), frozen_why_);
+    frozen_serial_ = fit_serial_;
+  }
+  if (why) *why = frozen_ ? std::string() : frozen_why_;
+  return frozen_;
+}
+
+void Session::drag_move(Drag& d, std::size_t row, std::size_t index, const Point& to) {
+  if (d.quick) {
+    d.quick->move_point(row, index, to);
+    rows_refitted_ = d.quick->rows_refitted();
+    return;
+  }
+  if (!to.allFinite())  // as fit_surface() refuses it; the state stays as it was
+    throw Error(ErrorCode::kInputData, "coordinate is not a finite number",
+                Place{.row = static_cast<long>(row), .point = static_cast<long>(index)},
+                {to.x(), to.y(), to.z()});
+  d.rows.mutable_row(row)[index] = to;
+  d.result = d.frozen->refit(d.rows);
+  rows_refitted_ = d.rows.size();  // one solve for the whole surface
 }
 
 std::vector<Point> Session::row_points(std::size_t row) const {
@@ -104,14 +131,19 @@ void Session::move(std::size_t row, std::size_t index, const Point& to, MovePhas
     d.row = row;
     d.index = index;
     d.before = row_points(row);
-    d.quick = std::make_unique<IncrementalFit>(
-        fit_->rows(), quick_refit_options(options_, fit_->result().report));
+    // The counts, knots and parameters of the full fit, frozen for the drag (frozen_fit.h);
+    // where that cannot be made, the refit at its counts (quick_refit.h).
+    d.frozen = frozen();
+    if (d.frozen)
+      d.rows = fit_->rows();
+    else
+      d.quick = std::make_unique<IncrementalFit>(
+          fit_->rows(), quick_refit_options(options_, fit_->result().report));
     drag_ = std::move(d);
   }
   Drag& d = *drag_;
   if (phase == MovePhase::kDrag) {
-    d.quick->move_point(row, index, to);
-    rows_refitted_ = d.quick->rows_refitted();
+    drag_move(d, row, index, to);
     d.final = false;
     ++version_;
     return;
@@ -122,7 +154,7 @@ void Session::move(std::size_t row, std::size_t index, const Point& to, MovePhas
     after[index] = to;
     set_row(row, after);
   }
-  if (d.quick->rows()[row][index] != to) d.quick->move_point(row, index, to);
+  if (drag_rows(d)[row][index] != to) drag_move(d, row, index, to);
   d.final = true;
   ++version_;
   if (phase == MovePhase::kEnd) finish_drag();
@@ -132,7 +164,7 @@ void Session::finish_drag() {
   if (!drag_) return;
   Drag d = std::move(*drag_);
   drag_.reset();
-  const Point to = d.quick->rows()[d.row][d.index];
+  const Point to = drag_rows(d)[d.row][d.index];
   if (fit_->rows()[d.row][d.index] != to) {
     try {
       std::vector<Point> after = row_points(d.row);

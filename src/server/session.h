@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "frozen_fit.h"
 #include "sfit/incremental.h"
 #include "sfit/rows.h"
 #include "sfit/surface_fit.h"
@@ -79,12 +80,20 @@ class Session {
   /// within T (its message; best_effort.h); empty when the full fit is the search's. Every
   /// edit tries the search again.
   const std::string& best_effort() const { return best_effort_; }
+  /// The quick refit of a drag from the full fit as it is (frozen_fit.h), built once per full
+  /// fit and kept until the fit changes (the influence of a selected point asks for it before
+  /// the drag, which then starts without building it); nullptr with `why` where it cannot be
+  /// made (the drag then refits at the counts by IncrementalFit, quick_refit.h).
+  std::shared_ptr<const FrozenFit> frozen(std::string* why = nullptr) const;
 
  private:
   struct Drag {
     std::size_t row = 0, index = 0;
-    std::vector<Point> before;  // the row at the start of the drag
-    std::unique_ptr<IncrementalFit> quick;
+    std::vector<Point> before;                // the row at the start of the drag
+    std::unique_ptr<IncrementalFit> quick;    // where no frozen refit could be made
+    std::shared_ptr<const FrozenFit> frozen;  // else: the refit frozen at the drag's start
+    Rows rows;                                // and its rows and result
+    FitResult result;
     bool final = false;  // the last step was a rest: fit_ is at the current position
   };
   void apply(const Change& c, bool forward);
@@ -94,6 +103,9 @@ class Session {
   void refit(Rows rows, const FitOptions& options);
   void commit(Change c);
   std::vector<Point> row_points(std::size_t row) const;
+  // The drag's quick state: its rows, and point (row, index) moved to `to` with its refit.
+  const Rows& drag_rows(const Drag& d) const { return d.quick ? d.quick->rows() : d.rows; }
+  void drag_move(Drag& d, std::size_t row, std::size_t index, const Point& to);
 
   FitOptions options_;
   std::unique_ptr<IncrementalFit> fit_;
@@ -102,6 +114,10 @@ class Session {
   long version_ = 0;
   std::size_t rows_refitted_ = 0;
   std::string best_effort_;
+  long fit_serial_ = 0;  // counts the changes of fit_ (the frozen refit's cache key)
+  mutable std::shared_ptr<const FrozenFit> frozen_;
+  mutable std::string frozen_why_;
+  mutable long frozen_serial_ = -1;
 };
 
 }  // namespace sfit::server
