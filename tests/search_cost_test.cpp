@@ -44,7 +44,11 @@ TEST(SearchCost, NoiseNearTSearchesNoRowRuleAndSaysSo) {
   // at chord positions, times the columns') is beyond the largest pair it tries.
   EXPECT_NE(fit.report.stop_reason.find("no pair searched"), std::string::npos)
       << fit.report.stop_reason;
+  // No pair solved at all (the floors are curve fits of a few rows, no surface solve).
+  EXPECT_EQ(fit.report.pairs_tried, 0);
   EXPECT_TRUE(fit.report.within_tolerance);
+  // T held at every point, measured on the returned surface.
+  for (int a = 0; a < 3; ++a) EXPECT_LE(fit.report.max_deviation[a], 0.5);
   // The two stages, or where it has fewer control points their variant with the rows at all
   // of T and columns interpolating them (here 243 x 250 against 250 x 250), which says so.
   o.method = FitMethod::kSfit01;

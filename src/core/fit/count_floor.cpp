@@ -35,8 +35,8 @@ std::pair<int, bool> smallest_count(std::span<const Point> points, int degree, b
 }
 }  // namespace
 
-CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization rule,
-                       double roundoff) {
+CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization rule, double roundoff,
+                       FloorPart part) {
   CountFloor out{o.degree_u + 1, o.degree_v + 1, false};
   const std::size_t M = rows.size();
   if (M == 0 || weights_matter(rows)) return out;
@@ -45,7 +45,8 @@ CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization ru
   const std::size_t n = rows[0].size();
   bool grid = M >= static_cast<std::size_t>(o.degree_v) + 2;
   for (std::size_t j = 0; j < M && grid; ++j) grid = rows[j].size() == n;
-  const std::size_t row_picks = std::min(kPicks, M), col_picks = grid ? std::min(kPicks, n) : 0;
+  const std::size_t row_picks = part == FloorPart::kColumns ? 0 : std::min(kPicks, M);
+  const std::size_t col_picks = grid && part != FloorPart::kRows ? std::min(kPicks, n) : 0;
   std::vector<std::pair<int, bool>> got(row_picks + col_picks, {0, false});
   parallel_for(got.size(), threads_for(rows, o.threads), [&](std::size_t k) {
     if (k < row_picks) {

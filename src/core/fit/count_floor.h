@@ -24,11 +24,17 @@ struct CountFloor {
   bool forced = false;
 };
 
+/// Which curves count_floor() fits: all, the rows only (nv stays degree_v + 1) or the columns
+/// only (nu stays degree_u + 1, not forced). The rows' and the columns' parts are the same
+/// numbers as in kAll (each curve is fitted alone), so a caller may fit the rows first and the
+/// columns only where the rows do not decide already.
+enum class FloorPart { kAll, kRows, kColumns };
+
 /// The floor of `rule` on `rows` (centred) at T = o.tolerance (the round-off where T is 0).
 /// Weighted rows and rows shorter than degree + 2 points say nothing (the floor stays at
 /// degree + 1, not forced). Counted work: a few curve solves per sampled row and column.
-CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization rule,
-                       double roundoff);
+CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization rule, double roundoff,
+                       FloorPart part = FloorPart::kAll);
 
 /// A lower bound on the two-stage fit's nu x nv at the paper's rule: its nu is at least every
 /// row's count at the curve stage's budget T / 2, from 8 rows (surface_method.cpp defers the

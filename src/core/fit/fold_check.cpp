@@ -37,11 +37,25 @@ void column_at(const Surface& s, double u, std::vector<Point>& col, std::vector<
   }
 }
 
-Point column_point(const Surface& s, const std::vector<Point>& col, double v) {
-  std::array<double, kMaxDegree + 1> bv;
-  const int fv = basis_v(s, v, bv.data());
+// The basis across at one v: its first index and values.
+struct BasisAt {
+  int first = 0;
+  std::array<double, kMaxDegree + 1> values;
+};
+
+BasisAt basis_at_v(const Surface& s, double v) {
+  BasisAt b;
+  b.first = basis_v(s, v, b.values.data());
+  return b;
+}
+
+// S(u, v) on the column `col` at u, with the basis across at v made once (basis_at_v()): the
+// samples of every column share their v, so their bases are evaluated once per fit, not once
+// per column (the same values, summed in the same order).
+Point column_point(const Surface& s, const std::vector<Point>& col, const BasisAt& bv) {
   Point p = Point::Zero();
-  for (int b = 0; b <= s.degree_v; ++b) p += bv[b] * col[wrap_index(fv + b, s.count_v)];
+  for (int b = 0; b <= s.degree_v; ++b)
+    p += bv.values[b] * col[wrap_index(bv.first + b, s.count_v)];
   return p;
 }
 
@@ -86,15 +100,22 @@ template <class Visit>
 double fold_and_visit(const Surface& s, std::span<const double> v, double budget, Visit&& visit) {
   const auto st = stretches(s, v);
   const int nu = u_samples(s, st.size(), budget);
+  // The bases across at every stretch's samples, the same for every column.
+  std::vector<BasisAt> across;
+  across.reserve(st.size() * (kPerStretch + 1));
+  for (const auto& [v0, v1] : st)
+    for (int k = 0; k <= kPerStretch; ++k)
+      across.push_back(basis_at_v(s, v0 + (v1 - v0) * k / kPerStretch));
   std::vector<Point> col, col_u;
   std::array<Point, kPerStretch + 1> p;
   double fold = 0;
   for (int a = 0; a <= nu; ++a) {
     if (s.periodic_u && a == nu) break;
     column_at(s, s.u_end() * a / nu, col, col_u);
+    const BasisAt* bv = across.data();
     for (const auto& [v0, v1] : st) {
-      for (int k = 0; k <= kPerStretch; ++k) {
-        p[k] = column_point(s, col, v0 + (v1 - v0) * k / kPerStretch);
+      for (int k = 0; k <= kPerStretch; ++k, ++bv) {
+        p[k] = column_point(s, col, *bv);
         visit(p[k]);
       }
       const Point chord = p[kPerStretch] - p[0];

@@ -96,17 +96,35 @@ PointsVerdict check_points(const Surface& s, const Rows& rows, std::span<const d
 
 }  // namespace
 
-Frame::Frame(const Rows& rows, const FitOptions& o) : tolerance(o.tolerance) {
-  threads = threads_for(rows, o.threads);
-  box = box_of(rows, threads);
-  centre = 0.5 * (box.min + box.max);
-  centred_box = BoundingBox{box.min - centre, box.max - centre};
-  roundoff = kRoundoffRelative * box.diagonal();
-  centred = rows;
+namespace {
+// The rows less the centre of their box (the frame's own copy).
+std::unique_ptr<const Rows> centred_copy(const Rows& rows, int threads, const Point& centre) {
+  auto out = std::make_unique<Rows>(rows);
   parallel_for(rows.size(), threads, [&](std::size_t j) {
-    for (Point& p : centred.mutable_row(j)) p -= centre;
+    for (Point& p : out->mutable_row(j)) p -= centre;
   });
+  return out;
 }
+int frame_threads(const Rows& rows, const FitOptions& o) {
+  return threads_for(rows, o.threads);
+}
+Point box_centre(const BoundingBox& b) {
+  return 0.5 * (b.min + b.max);
+}
+}  // namespace
+
+Frame::Frame(const Rows& rows, const FitOptions& o)
+    : Frame(rows, o, frame_threads(rows, o), box_of(rows, frame_threads(rows, o))) {}
+
+Frame::Frame(const Rows& rows, const FitOptions& o, int t, const BoundingBox& b)
+    : own_(centred_copy(rows, t, box_centre(b))),
+      threads(t),
+      box(b),
+      centred_box{b.min - box_centre(b), b.max - box_centre(b)},
+      centre(box_centre(b)),
+      roundoff(kRoundoffRelative * b.diagonal()),
+      centred(*own_),
+      tolerance(o.tolerance) {}
 
 Frame::Frame(const Centring& c, const FitOptions& o)
     : threads(c.threads),

@@ -57,12 +57,14 @@ struct Polyline {
     // Cubic Hermite with finite-difference (Catmull-Rom) tangents: rows sampled from smooth
     // sections of different point counts then match at fractions of a spacing far better
     // than their polylines (whose chords sag differently).
-    auto point = [&](long k) {
-      return p[static_cast<std::size_t>((k % long(n) + long(n)) % long(n))];
-    };
+    // k runs over a - 1 ... b + 1, within -1 ... n + 1 (n >= 2): at most one wrap either way,
+    // taken without an integer division (this runs 64 times per sample set, thousands of sets
+    // per fit of closed rows).
+    const long nn = static_cast<long>(n);
+    auto wraps_of = [&](long k) -> long { return k < 0 ? -1 : (k >= nn ? 1 : 0); };
+    auto point = [&](long k) { return p[static_cast<std::size_t>(k - wraps_of(k) * nn)]; };
     auto pos = [&](long k) {
-      const long nn = static_cast<long>(n);
-      const long wraps = k >= 0 ? k / nn : -((-k + nn - 1) / nn);
+      const long wraps = wraps_of(k);
       return at[static_cast<std::size_t>(k - wraps * nn)] + static_cast<double>(wraps);
     };
     const long a = static_cast<long>(i), b = a + 1;

@@ -145,12 +145,25 @@ FitResult fit_surface_search(const FitSpec& spec) {
   std::size_t rules_done = 0;
   std::vector<Parametrization> searched;
   std::optional<GeometricFit> geo;  // the kGeometric rule's surface (geometric_search.h)
-  // Each rule's floor, made once (the geometric rule reads the chord rule's).
-  std::map<Parametrization, CountFloor> floors;
+  // Each rule's floor, made once (the geometric rule reads the chord rule's): its rows first
+  // (row_floor_of(), nv at its least), its columns only where the rows do not decide (noise
+  // near T on a grid: the rows' counts alone rule every row rule out).
+  std::map<Parametrization, CountFloor> floors, row_floors;
+  auto row_floor_of = [&](Parametrization r) -> const CountFloor& {
+    if (auto it = floors.find(r); it != floors.end()) return it->second;
+    auto it = row_floors.find(r);
+    if (it == row_floors.end())
+      it = row_floors.emplace(r, count_floor(fr.centred, os, r, fr.roundoff, FloorPart::kRows))
+               .first;
+    return it->second;
+  };
   auto floor_of = [&](Parametrization r) -> const CountFloor& {
     auto it = floors.find(r);
-    if (it == floors.end())
-      it = floors.emplace(r, count_floor(fr.centred, os, r, fr.roundoff)).first;
+    if (it == floors.end()) {
+      CountFloor f = row_floor_of(r);
+      f.nv = count_floor(fr.centred, os, r, fr.roundoff, FloorPart::kColumns).nv;
+      it = floors.emplace(r, f).first;
+    }
     return it->second;
   };
   for (Parametrization rule : rules) {
@@ -172,11 +185,15 @@ FitResult fit_surface_search(const FitSpec& spec) {
       // surface of these parameters is no iso-curve along a row): where it cannot beat the
       // bound, or noise forces interpolation, the rule is not searched.
       // Nor where it is beyond the largest pair the rule tries (noise near T on a grid).
-      const CountFloor& cf = floor_of(Parametrization::kChord);
-      const long at_least = static_cast<long>(cf.nu) * cf.nv;
-      if (cf.forced || at_least >= bound || at_least > kGeometricMaxUnknowns) {
+      // (The rows alone first: the columns' counts only raise the product.)
+      const auto geometric_out = [&](const CountFloor& cf) {
+        const long at_least = static_cast<long>(cf.nu) * cf.nv;
+        return cf.forced || at_least >= bound || at_least > kGeometricMaxUnknowns;
+      };
+      const CountFloor& crf = row_floor_of(Parametrization::kChord);
+      if (geometric_out(crf) || geometric_out(floor_of(Parametrization::kChord))) {
         ++floored;
-        forced_rules += cf.forced ? 1 : 0;
+        forced_rules += crf.forced ? 1 : 0;
         continue;
       }
       long geo_pairs = 0;
@@ -195,11 +212,16 @@ FitResult fit_surface_search(const FitSpec& spec) {
       if (geo && step > 1) bound = std::min(bound, 2 * n);
       continue;
     }
-    const CountFloor& floor = floor_of(rule);
-    if (static_cast<long>(floor.nu) * floor.nv >= bound ||
-        (step > 1 && static_cast<std::size_t>(floor.nu) > longest / step + 2 + 16)) {
+    // The rows' floor alone first (nv at its least, so its product bounds the whole floor's
+    // from below): where it rules the rule out, the columns are not fitted.
+    const CountFloor& rf = row_floor_of(rule);
+    const auto rule_out = [&](const CountFloor& f) {
+      return static_cast<long>(f.nu) * f.nv >= bound ||
+             (step > 1 && static_cast<std::size_t>(f.nu) > longest / step + 2 + 16);
+    };
+    if (rule_out(rf) || rule_out(floor_of(rule))) {
       ++floored;
-      forced_rules += floor.forced ? 1 : 0;
+      forced_rules += rf.forced ? 1 : 0;
       searched.push_back(rule);  // looked at: its floor ruled it out
       continue;
     }
