@@ -11,6 +11,7 @@
 #include "reference_eval.h"
 #include "sfit/curve_fit.h"
 #include "sfit/error.h"
+#include "sfit/fit_check.h"
 #include "sfit/io/surface_json.h"
 #include "sfit/surface_fit.h"
 #include "sfit/weights.h"
@@ -99,6 +100,43 @@ TEST(FinalCheck, WhatIsReturnedHoldsAsWritten) {
       }
     }
   EXPECT_GT(held, 0);
+}
+
+// sfit/fit_check.h: the final check for a surface made outside a fit (the editor's drag
+// refit) is the fit's own: on a fit as returned it gives the report's verdict and deviations,
+// and a point exactly at T does not hold once the round-off of evaluating it is allowed for.
+TEST(FinalCheck, ThePublicCheckIsTheFitsOwn) {
+  for (const double offset : {0.0, 1e6, 1e11}) {
+    SCOPED_TRACE("offset " + std::to_string(offset));
+    const Rows rows = grid(offset);
+    FitOptions o;
+    o.tolerance = relative_tolerance(rows, 1e-3);
+    const FitResult f = fit_surface(rows, o);
+    ASSERT_TRUE(f.report.within_tolerance);
+    FitResult c = f;
+    c.report.within_tolerance = false;
+    c.report.max_deviation = Point::Zero();
+    check_fit_as_written(c, rows, o.tolerance, 1);
+    EXPECT_TRUE(c.report.within_tolerance);
+    EXPECT_EQ(c.report.max_deviation, f.report.max_deviation);
+    EXPECT_EQ(c.report.worst_row, f.report.worst_row);
+    EXPECT_EQ(c.report.worst_index, f.report.worst_index);
+    // T equal to the largest deviation: a naive |d| <= T holds, the check does not.
+    const Point at_t = f.report.max_deviation;
+    check_fit_as_written(c, rows, at_t, 1);
+    EXPECT_FALSE(c.report.within_tolerance);
+    // The verdict is the same on every thread count.
+    FitResult c4 = f;
+    check_fit_as_written(c4, rows, at_t, 4);
+    EXPECT_EQ(c4.report.within_tolerance, c.report.within_tolerance);
+    EXPECT_EQ(c4.report.max_deviation, c.report.max_deviation);
+    // A surface moved by 2 T on z holds nowhere.
+    FitResult moved = f;
+    for (Point& p : moved.surface.control) p.z() += 2 * o.tolerance.z();
+    check_fit_as_written(moved, rows, o.tolerance);
+    EXPECT_FALSE(moved.report.within_tolerance);
+    EXPECT_GT(moved.report.max_deviation.z(), o.tolerance.z());
+  }
 }
 
 // The round-off allowance (1e-10 of the diagonal) is not added to a tolerance > 0: at

@@ -10,6 +10,7 @@
 #include "fit_driver.h"
 #include "fit_frame.h"
 #include "sfit/error.h"
+#include "sfit/fit_check.h"
 
 namespace sfit::detail {
 namespace {
@@ -59,29 +60,45 @@ void check_offset_digits(const BoundingBox& box, const Point& tolerance, double 
   }
 }
 
-void check_as_written(FitResult& r, const Rows& rows, const FitOptions& o) {
+namespace {
+
+// The check proper of check_as_written() and check_fit_as_written(): sets r's max deviation
+// and worst point from r.surface as it stands, returns whether every point holds, and the
+// per-axis limit it held them to (T + allowance - the evaluation's round-off).
+bool written_check(FitResult& r, const Rows& rows, const Point& tolerance, int threads,
+                   Point& limit, Point& size) {
   const Surface& s = r.surface;
   FitReport& rep = r.report;
-  const Point allow = roundoff_allowance(o.tolerance, rep.roundoff);
-  Point size = Point::Zero();
+  const Point allow = roundoff_allowance(tolerance, rep.roundoff);
+  size = Point::Zero();
   for (const Point& p : s.control) size = size.cwiseMax(p.cwiseAbs());
   // Held where |S - D| <= T + allowance - the evaluation's round-off, per axis.
-  Point limit;
   for (int a = 0; a < 3; ++a)
-    limit[a] = o.tolerance[a] + allow[a] - evaluation_roundoff(s.degree_u, s.degree_v, size[a]);
-  const bool held_centred = rep.within_tolerance;
+    limit[a] = tolerance[a] + allow[a] - evaluation_roundoff(s.degree_u, s.degree_v, size[a]);
   // Where the evaluation's round-off alone exceeds T (a few ulps of the offset), nothing
   // holds; the check still measures the deviations for the report.
   const bool room = (limit.array() >= 0).all();
-  DeviationCheck c = check_deviation(s, rows, r.u, r.v_for_points(), limit.cwiseMax(0.0), 0.0,
-                                     threads_for(rows, o.threads));
-  c.within = c.within && room;
+  const DeviationCheck c =
+      check_deviation(s, rows, r.u, r.v_for_points(), limit.cwiseMax(0.0), 0.0, threads);
   rep.max_deviation = c.max_deviation;
   rep.worst_row = c.worst_row;
   rep.worst_index = c.worst_index;
   rep.worst_deviation = c.worst_deviation;
-  rep.within_tolerance = held_centred && c.within;
-  if (!held_centred || c.within) return;
+  return c.within && room;
+}
+
+}  // namespace
+
+void check_as_written(FitResult& r, const Rows& rows, const FitOptions& o) {
+  const Surface& s = r.surface;
+  FitReport& rep = r.report;
+  const Point allow = roundoff_allowance(o.tolerance, rep.roundoff);
+  Point limit, size;
+  const bool held_centred = rep.within_tolerance;
+  const bool within =
+      written_check(r, rows, o.tolerance, threads_for(rows, o.threads), limit, size);
+  rep.within_tolerance = held_centred && within;
+  if (!held_centred || within) return;
   // The method said it held. Where the surface does not hold in centred coordinates either
   // (surface and data less the box's centre), the method was wrong, not the digits: not within.
   {
@@ -98,7 +115,7 @@ void check_as_written(FitResult& r, const Rows& rows, const FitOptions& o) {
   int axis = 0;
   for (int a = 1; a < 3; ++a)
     if (size[a] > size[axis]) axis = a;
-  const Point d = c.worst_deviation.cwiseAbs();
+  const Point d = rep.worst_deviation.cwiseAbs();
   int worst = 0;
   for (int a = 1; a < 3; ++a)
     if (d[a] - limit[a] > d[worst] - limit[worst]) worst = a;
@@ -112,7 +129,18 @@ void check_as_written(FitResult& r, const Rows& rows, const FitOptions& o) {
                   " on " + "xyz"[worst] + ": deviation " + g(d[worst]) + " plus up to " + g(slack) +
                   " of round-off in evaluating it; move the data nearer the origin or raise the "
                   "tolerance",
-              Place{.row = c.worst_row, .point = c.worst_index}, {d[worst], o.tolerance[worst]});
+              Place{.row = rep.worst_row, .point = rep.worst_index},
+              {d[worst], o.tolerance[worst]});
 }
 
 }  // namespace sfit::detail
+
+namespace sfit {
+
+void check_fit_as_written(FitResult& fit, const Rows& rows, const Point& tolerance, int threads) {
+  Point limit, size;
+  fit.report.within_tolerance =
+      detail::written_check(fit, rows, tolerance, detail::threads_for(rows, threads), limit, size);
+}
+
+}  // namespace sfit
