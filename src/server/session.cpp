@@ -134,9 +134,10 @@ void Session::move(std::size_t row, std::size_t index, const Point& to, MovePhas
     // The counts, knots and parameters of the full fit, frozen for the drag (frozen_fit.h);
     // where that cannot be made, the refit at its counts (quick_refit.h).
     d.frozen = frozen();
-    if (d.frozen)
+    if (d.frozen) {
       d.rows = fit_->rows();
-    else
+      d.result = fit_->result();  // shown until the first step's refit (which may refuse it)
+    } else
       d.quick = std::make_unique<IncrementalFit>(
           fit_->rows(), quick_refit_options(options_, fit_->result().report));
     drag_ = std::move(d);
