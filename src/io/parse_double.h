@@ -3,6 +3,9 @@
 
 #include <fast_float/fast_float.h>
 
+#include <locale.h>
+#include <stdlib.h>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -36,7 +39,13 @@ inline FieldNumber read_field_number(std::string_view tok, double& x) {
   if (b == e) return tok.empty() ? FieldNumber::kEmpty : FieldNumber::kNotANumber;
   const auto r = parse_double(b, e, x);
   if (r.ec == std::errc::result_out_of_range && r.ptr == e) {
-    x = std::strtod(std::string(b, e).c_str(), nullptr);
+    // strtod in the "C" locale (a host program's decimal comma must not cut "1.5e-400" at
+    // its point), the whole field read or it is no number.
+    static const locale_t c_locale = newlocale(LC_NUMERIC_MASK, "C", locale_t{});
+    const std::string copy(b, e);
+    char* end = nullptr;
+    x = strtod_l(copy.c_str(), &end, c_locale);
+    if (end != copy.c_str() + copy.size()) return FieldNumber::kNotANumber;
     return std::isinf(x) ? FieldNumber::kOutOfRange : FieldNumber::kOk;
   }
   if (r.ec != std::errc() || r.ptr != e) return FieldNumber::kNotANumber;
