@@ -255,8 +255,9 @@ bool adapt_knots(const Rows& rows, const FitOptions& o, FitResult& r) {
     if (!any) return false;
   }
   if (!held) return false;
-  // A surface that folds here is given up before the removal: taking knots out where T still
-  // holds does not unfold it (an airborne LiDAR strip's roofs and trees, 6,112 points at 1e-2
+  // A surface that folds here is given up before the removal, on the assumption (seen, not
+  // proved) that taking knots out where T still holds does not unfold it; a surface it would
+  // unfold is no longer tried (an airborne LiDAR strip's roofs and trees, 6,112 points at 1e-2
   // with --method sfit01: fold 1.343 before and after 46 removal solves, 11 s of 12), and
   // a folded surface is never kept (below). Where the adapted surface wins it does not fold
   // here (the tests' and examples' cases), so those results are unchanged.

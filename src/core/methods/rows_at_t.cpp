@@ -26,7 +26,7 @@ std::optional<FitResult> fit_rows_at_t(const FitSpec& spec, const FitOptions& tw
   progress_phase("rows take T", 1);
   std::optional<FitResult> out;
   try {
-    // The registry's two-stage method (a plug-in that replaces "sfit01" replaces this too).
+    // The two-stage method, asked of the registry by name (no method calls another directly).
     FitResult a = method_entry("sfit01").fit(
         FitSpec{spec.rows, two_stage, spec.seam_offsets, c, /*rows_take_all=*/true});
     const long n = static_cast<long>(a.surface.count_u) * a.surface.count_v;
