@@ -23,6 +23,7 @@
 #include "pair_search.h"
 #include "parallel.h"
 #include "rows_at_t.h"
+#include "sampled_search.h"
 #include "search_frame.h"
 #include "sfit/curve_fit.h"
 #include "sfit/error.h"
@@ -36,32 +37,6 @@ namespace {
 
 // Minimax fits per rule in the search (each is a linear program per axis).
 constexpr int kLinfTries = 2;
-
-// Pairs whose solve would cost more flops than this are not tried (they count as not
-// holding; the report says how many): the sparse factorisation grows as unknowns x band^2,
-// and a pair that size is far from the fewest control points anyway wherever the two-stage
-// bound leaves room (at 10^6 points, 2 % of them as control points cost ~4e9).
-constexpr double kSolveBudget = 4e9;
-// ... and at most kSolvePerPoint flops per data point of the problem (kSolveFloor at least).
-// The search's columns are capped at the largest affordable nu (PairRange::affordable), so a
-// costly pair only narrows a column. The pairs this leaves out are near interpolation, where
-// the rules other than the paper's swing between the points anyway: on the shared sets the
-// counts stayed or fell when the factor went from 2000 to 500 and the floor from 2e8 to 4e6,
-// and the search's time fell by 2-5x on the largest (docs/control-points.md).
-constexpr double kSolvePerPoint = 500;
-constexpr double kSolveFloor = 4e6;
-double solve_budget(std::size_t points) {
-  return std::clamp(kSolvePerPoint * static_cast<double>(points), kSolveFloor, kSolveBudget);
-}
-
-// Above this many points the search runs on every step-th point of each row (the positions
-// those points have in the full rows), and its pair is then verified on all points: raised
-// until it holds there, and descended to where one fewer either way fails on all points.
-// The choice is then as minimal as on the full data wherever holding is monotone near it.
-// 5e4 rather than 1e5: the peer benchmark's 10^5-point grid and ragged sets keep their counts
-// and take 0.2-0.5 s instead of 0.3-0.9 s (the 10^6-point grid at 1e-3 gets 14 x 11 instead
-// of 11 x 12; docs/control-points.md).
-constexpr std::size_t kSearchPoints = 50000;
 
 // A surface the search made: its rule, norm and where the search stopped.
 struct Candidate {
@@ -250,50 +225,8 @@ FitResult fit_surface_search(const FitSpec& spec) {
     if (step == 1) {
       choice = search_pairs(range, bound, l2);
     } else {
-      std::vector<double> sample_positions;
-      const Rows sample = subsample(fr.centred, step, prob.positions_u(), sample_positions);
-      TensorProblem sp(sample, spec_of(os, rule, fr.threads, seam_offsets),
-                       std::move(sample_positions), prob.positions_v());
-      PairOracle on_sample([&](int nu, int nv) {
-        if (static_cast<double>(nu) * few.nv(nv) > static_cast<double>(sample.total_points()) ||
-            sp.cost(nu, few.nv(nv)) > solve_budget(sample.total_points()))
-          return PairVerdict{false, HUGE_VAL};
-        auto s = few.raise(solve_pair(sp, FitNorm::kL2, nu, few.nv(nv), o.tolerance));
-        if (monitor) monitor->pair_tried(nu, nv, false);  // holding on a sample is no best
-        if (!s) return PairVerdict{false, HUGE_VAL};
-        return fr.judge(*s, sp.u_at(nu), sp.v_at(few.nv(nv)), nullptr, &sample);
-      });
-      const PairRange sample_range{sp.min_u(), sp.max_u(), few.min_v(sp.min_v()),
-                                   few.max_v(sp.max_v()), [&](int nu, int nv) {
-                                     return sp.cost(nu, few.nv(nv)) <=
-                                            solve_budget(sample.total_points());
-                                   }};
-      const PairChoice c = search_pairs(sample_range, bound, on_sample);
-      tried += on_sample.tried();
-      if (c.nu > 0) {
-        // Raise until all points hold (the smallest product first), then descend on them.
-        int nu = c.nu, nv = c.nv;
-        bool holds = l2(nu, nv).holds;
-        for (int k = 1; !holds && k <= 16; ++k) {
-          for (const auto& [a, b] :
-               {std::pair{nu + k, nv}, std::pair{nu, nv + k}, std::pair{nu + k, nv + k}}) {
-            if (static_cast<long>(a) * b >= bound || a > range.max_u || b > range.max_v) continue;
-            if (l2(a, b).holds) {
-              nu = a;
-              nv = b;
-              holds = true;
-              break;
-            }
-          }
-        }
-        if (holds) {
-          const auto [mu, mv] = descend(nu, nv, range, l2);
-          choice.nu = mu;
-          choice.nv = mv;
-          choice.stop = "minimal (searched on every " + std::to_string(step) +
-                        "th point of each row, verified on all)";
-        }
-      }
+      choice = search_on_sample(fr, few, prob, spec_of(os, rule, fr.threads, seam_offsets),
+                                o.tolerance, step, range, bound, l2, tried);
     }
     tried += l2.tried();
     std::optional<Candidate> found;
