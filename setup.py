@@ -44,13 +44,16 @@ class CMakeBuild(build_ext):
         subprocess.run(args, check=True)
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
         subprocess.run(["cmake", "--build", str(build), "--target", "sfit_python", "-j", jobs],
-                       check=True)
+                       check=True)  # builds the CAD module too (STEP/IGES, loaded on first use)
         built = list((build / "python" / "sfit").glob("_sfit*.so"))
         if len(built) != 1:
             raise RuntimeError(f"expected one built module in {build}/python/sfit, got {built}")
         target = pathlib.Path(self.get_ext_fullpath(ext.name))
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(built[0], target)
+        # STEP and IGES: the module the compiled part loads on first use, looked for beside it.
+        for cad in (build / "src" / "exchange").glob("libsfit_cad.so"):
+            shutil.copyfile(cad, target.parent / cad.name)
 
 
 setup(

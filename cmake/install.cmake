@@ -47,6 +47,9 @@ if(TARGET sfit_exchange)
   install(DIRECTORY include/sfit/exchange DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sfit)
   install(EXPORT sfitExchangeTargets NAMESPACE sfit:: DESTINATION ${SFIT_CMAKE_DIR})
 endif()
+if(TARGET sfit_cad)  # STEP/IGES, loaded by sfit_exchange on first use (src/exchange/cad_module.h)
+  install(TARGETS sfit_cad LIBRARY DESTINATION ${SFIT_CAD_INSTALL_DIR})
+endif()
 
 # What the package config must find again: private dependencies of static libraries are part
 # of their link interface.
@@ -54,9 +57,6 @@ set(SFIT_STATIC_RENDER_DEPS "")
 set(SFIT_STATIC_EXCHANGE_DEPS "")
 if(NOT BUILD_SHARED_LIBS)
   set(SFIT_STATIC_RENDER_DEPS "find_dependency(PNG)")
-  if(SFIT_EXCHANGE_CAD)
-    set(SFIT_STATIC_EXCHANGE_DEPS "find_dependency(OpenCASCADE CONFIG)")
-  endif()
 endif()
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/sfitConfig.cmake.in
   ${PROJECT_BINARY_DIR}/sfitConfig.cmake INSTALL_DESTINATION ${SFIT_CMAKE_DIR})

@@ -52,13 +52,17 @@ depends=$(dpkg-deb --field "$deb" Depends)
 dpkg-deb -x "$deb" "$tmp/root"
 for f in usr/bin/sfit usr/include/sfit/version.h usr/include/sfit/surface_fit.h \
          usr/include/sfit/render/image.h usr/include/sfit/exchange/writers.h \
-         usr/lib/cmake/sfit/sfitConfig.cmake usr/lib/libsfit.so usr/lib/libsfit_exchange.so; do
+         usr/lib/cmake/sfit/sfitConfig.cmake usr/lib/libsfit.so usr/lib/libsfit_exchange.so \
+         usr/lib/sfit/libsfit_cad.so; do
   [ -e "$tmp/root/$f" ] || fail "$deb lacks $f"
 done
 version=$("$tmp/root/usr/bin/sfit" --version)
 [[ "$version" == "sfit "* ]] || fail "the packaged CLI does not run: $version"
-"$tmp/root/usr/bin/sfit" fit examples/d150_wing.rows --closed u -q -o "$tmp/wing.igs" ||
-  fail "the packaged CLI cannot fit"
+LD_DEBUG=files "$tmp/root/usr/bin/sfit" fit examples/d150_wing.rows --closed u -q \
+  -o "$tmp/wing.igs" 2>"$tmp/loaded" || fail "the packaged CLI cannot fit: $(tail -3 "$tmp/loaded")"
+# IGES through the packaged CAD module (found from usr/bin/../lib/sfit), not the build tree's.
+grep -q "calling init: $tmp/root/usr/lib/sfit/libsfit_cad.so" "$tmp/loaded" ||
+  fail "the packaged CLI did not load the packaged CAD module: $(grep libsfit_cad "$tmp/loaded")"
 cmake -S tests/consumer -B "$tmp/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$tmp/root/usr" \
   "-DSFIT_COMPONENTS=render;exchange" >/dev/null
 cmake --build "$tmp/consumer" >/dev/null

@@ -21,6 +21,11 @@ namespace {
 
 void check_units(const std::string&) {}  // units matter only to STEP and IGES
 
+void require_cad(const std::string& option) {
+  throw Error(ErrorCode::kUsage, "STEP and IGES are off: this sfit was built without OpenCASCADE",
+              Place{.option = option});
+}
+
 void write_step(const std::string& path, const Surface&, const CadOptions&) {
   unavailable(path);
 }

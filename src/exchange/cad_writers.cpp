@@ -67,15 +67,6 @@ std::string product_name(const std::string& path, const CadOptions& o) {
 
 }  // namespace
 
-void check_units(const std::string& units) {
-  for (const Unit& u : kUnits)
-    if (units == u.ours) return;
-  std::string known;
-  for (const Unit& u : kUnits) known += (known.empty() ? "" : ", ") + std::string(u.ours);
-  throw Error(ErrorCode::kUsage, "unknown length unit '" + units + "' (known: " + known + ")",
-              Place{.option = "--units"});
-}
-
 void write_step(const std::string& path, const Surface& s, const CadOptions& o) {
   const Unit& unit = find_unit(o.units);
   io::check_writable(path);

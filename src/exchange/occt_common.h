@@ -8,6 +8,7 @@
 #include <array>
 #include <string>
 
+#include "cad_units.h"
 #include "sfit/surface.h"
 
 namespace sfit::exchange::detail {
@@ -18,20 +19,6 @@ namespace sfit::exchange::detail {
 /// and the periodic flags, so it evaluates to Surface::evaluate() at the same (u, v).
 Handle(Geom_BSplineSurface) to_occt(const Surface& surface);
 
-/// Our unit names, OCCT's (write.step.unit, IGES global section) and the size in millimetres.
-struct Unit {
-  const char* ours;
-  const char* occt;
-  double mm;
-};
-inline constexpr std::array<Unit, 8> kUnits{{{"mm", "MM", 1.0},
-                                             {"cm", "CM", 10.0},
-                                             {"m", "M", 1000.0},
-                                             {"km", "KM", 1e6},
-                                             {"um", "UM", 1e-3},
-                                             {"in", "INCH", 25.4},
-                                             {"ft", "FT", 304.8},
-                                             {"mi", "MI", 1609344.0}}};
 /// The unit called `ours` ("mm", "m", ...), or nullptr.
 const Unit* unit_named(const std::string& ours);
 /// The unit of a size in millimetres (1000: "m"), within 1e-9; nullptr if none.

@@ -161,13 +161,6 @@ void check_iges_curves(IGESControl_Reader& reader, const std::string& path) {
 
 }  // namespace
 
-bool is_step_extension(const std::string& e) {
-  return e == "step" || e == "stp";
-}
-bool is_iges_extension(const std::string& e) {
-  return e == "igs" || e == "iges";
-}
-
 SectionsFile read_sections_here(const std::string& path) {
   const std::string ext = io::extension_of(path);
   quiet_occt();
@@ -260,23 +253,6 @@ SectionsFile read_sections_here(const std::string& path) {
          "OpenCASCADE failed reading the file (" + describe(f) + ")");
   }
   return out;
-}
-
-void check_sections(const SectionsFile& s, const std::string& path) {
-  for (std::size_t j = 0; j < s.rows.size(); ++j) {
-    const auto row = s.rows[j];
-    if (row.empty())
-      fail(ErrorCode::kInputData, path, "curve gives no points", static_cast<long>(j));
-    for (const Point& p : row) {
-      if (!p.allFinite())
-        fail(ErrorCode::kInputData, path, "curve gives a non-finite point", static_cast<long>(j));
-      if (p.cwiseAbs().maxCoeff() > 1e150)
-        fail(ErrorCode::kInputData, path,
-             "curve reaches (" + g(p.x()) + ", " + g(p.y()) + ", " + g(p.z()) +
-                 "), out of the range sfit computes in (|x| <= 1e150)",
-             static_cast<long>(j));
-    }
-  }
 }
 
 }  // namespace sfit::exchange::detail

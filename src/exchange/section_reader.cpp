@@ -14,6 +14,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "cad_module.h"
 #include "section_child.h"
 #include "sfit/error.h"
 #include "sfit/exchange/readers.h"
@@ -213,6 +214,7 @@ SectionsFile read_sections(const std::string& path, const SectionReadOptions& op
          std::string("cannot open input: ") + std::strerror(errno));
   if (st.st_size == 0) fail(ErrorCode::kInputSyntax, path, "empty file: not a STEP or IGES file");
 
+  detail::cad_module();  // loaded here, so that a child never loads it after the fork
   SectionsFile out;
   if (!options.isolate) {
     out = detail::read_sections_here(path);

@@ -64,8 +64,12 @@ void check_output_extension(const std::string& path, const std::string& option,
   const std::string e = io::extension_of(path);
   const io::Format* f = io::find_format(e);
   if (f && f->kind == kind && f->writes && f->available &&
-      (kind != io::FormatKind::kSurface || writers().count(e)))
+      (kind != io::FormatKind::kSurface || writers().count(e))) {
+#ifdef SFIT_HAVE_EXCHANGE
+    if (f->part == io::FormatPart::kCad) exchange::require_cad(option);  // before any work
+#endif
     return;
+  }
   if (f && f->kind == kind && f->writes)
     throw Error(ErrorCode::kUsage,
                 "cannot write '" + path + "': " + std::string(f->name) + " needs " +

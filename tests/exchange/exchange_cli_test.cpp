@@ -2,6 +2,8 @@
 // the JSON reloading bit for bit, and the errors (exit codes, nothing written).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -133,6 +135,48 @@ TEST(ExchangeCli, ErrorsExitWithTheirCodeAndWriteNothing) {
     const std::string n = f.path().filename().string();
     EXPECT_TRUE(n == "bad.csv" || n == "bad.step" || n == "keep.stl") << n;
   }
+}
+
+// STEP and IGES come from a module loaded on first use (src/exchange/cad_module.h): the CLI
+// itself does not link OpenCASCADE, and where the module is missing a run that asks for STEP is
+// refused before any work, writing nothing.
+TEST(ExchangeCli, TheCadModuleLoadsOnlyWhenAskedFor) {
+  // What the program links, as the dynamic loader resolves it (ldd).
+  std::string linked;
+  if (FILE* p = ::popen(("ldd " + shell_quoted(SFIT_CLI) + " 2>&1").c_str(), "r")) {
+    char buf[4096];
+    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) linked.append(buf, n);
+    ::pclose(p);
+  }
+  EXPECT_NE(linked.find("libc.so"), std::string::npos) << linked;
+  EXPECT_EQ(linked.find("libTK"), std::string::npos) << "OpenCASCADE linked:\n" << linked;
+
+  const std::string dir = test::temp_dir();
+  const std::string in = shell_quoted(test::example("ship_px121_stations.rows"));
+  test::write_file(dir + "/keep.step", "old");
+  for (const std::string& module : {dir + "/no/libsfit_cad.so", test::good_rows()}) {
+    ::setenv("SFIT_CAD_MODULE", module.c_str(), 1);
+    const auto r = run_cli("fit " + in + " -o " + shell_quoted(dir + "/x.json") + " -o " +
+                           shell_quoted(dir + "/keep.step"));
+    const auto read = run_cli(
+        "fit " + shell_quoted(std::string(SFIT_TESTS_DIR) + "/bad_input/closed_sections.igs") +
+        " -o " + shell_quoted(dir + "/y.json"));
+    ::unsetenv("SFIT_CAD_MODULE");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("-o: STEP and IGES need sfit's CAD module (libsfit_cad.so"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find(module), std::string::npos) << "names where it looked: " << r.err;
+    EXPECT_EQ(read.exit_code, 2) << read.err;
+    EXPECT_EQ(test::read_file(dir + "/keep.step"), "old");
+    EXPECT_FALSE(fs::exists(dir + "/x.json")) << "nothing is written when one output cannot be";
+    EXPECT_FALSE(fs::exists(dir + "/y.json"));
+  }
+  // Found (beside the build or the install), the same run writes both.
+  const auto r = run_cli("fit " + in + " -q -o " + shell_quoted(dir + "/x.json") + " -o " +
+                         shell_quoted(dir + "/keep.step"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(test::read_file(dir + "/keep.step").find("ISO-10303-21"), std::string::npos);
 }
 
 }  // namespace

@@ -20,6 +20,11 @@ struct CadOptions {
 /// Throws Error(kUsage, option "--units") unless `units` is one of the known names.
 void check_units(const std::string& units);
 
+/// Loads the part that writes and reads STEP and IGES (OpenCASCADE, in a module of its own
+/// loaded on first use) now, so that a missing install is refused before any work: throws
+/// Error(kUsage, option `option`) where it cannot.
+void require_cad(const std::string& option);
+
 /// STEP AP214 (AUTOMOTIVE_DESIGN): one ADVANCED_FACE on the B_SPLINE_SURFACE_WITH_KNOTS in a
 /// shell-based surface model, the length unit stated as an SI or conversion-based unit.
 /// Throws Error(kOutputWrite) if OCCT refuses the surface or the file.
