@@ -170,6 +170,71 @@ TEST(PublicRegistry, RuleSelectedByNameGivesTheRowsItsPositions) {
   }
 }
 
+// Rows on which the squared rule is the surface's own parameter: the surface is a bicubic
+// polynomial in (s, t), x = s + s^2 / 2 (so no plane projection, chord length or index gives
+// s), and row j's points are at s = (k / (n - 1))^2, t = (j / 8)^2, the squared positions along
+// the rows and across them. At the squared rule one span fits it to round-off (4 x 4 control
+// points); every built-in rule needs more at this T.
+Rows squared_rows() {
+  Rows rows;
+  for (int j = 0; j < 9; ++j) {
+    std::vector<Point> row;
+    const int n = 14 + j % 3;
+    for (int k = 0; k < n; ++k) {
+      const double s = std::pow(static_cast<double>(k) / (n - 1), 2), t = std::pow(j / 8.0, 2);
+      row.push_back({s + 0.5 * s * s, t, s * s * s - s * t + 0.3 * t * t + 0.2 * s * t * t});
+    }
+    rows.add_row(row);
+  }
+  return rows;
+}
+
+TEST(PublicRegistry, OptedInRuleIsTriedByTheAutomaticChoices) {
+  const Rows rows = squared_rows();
+  FitOptions o;
+  o.tolerance = Point::Constant(1e-7);
+  const auto size = [](const FitResult& r) { return r.surface.count_u * r.surface.count_v; };
+  // Not registered: the built-ins' best.
+  const FitResult builtin = fit_surface(rows, o);
+  ASSERT_TRUE(builtin.report.within_tolerance);
+  EXPECT_GT(size(builtin), 16);
+  {
+    // Registered to be used when named only: the default and `fewest` do not try it.
+    const RegisteredRule rule("squared_named_app", "", squared);
+    for (Parametrization choice : {Parametrization::kAuto, Parametrization::kFewest}) {
+      FitOptions oc = o;
+      oc.parametrization = choice;
+      const FitResult r = fit_surface(rows, oc);
+      EXPECT_NE(r.report.parametrization, rule.id()) << to_string(choice);
+      EXPECT_EQ(size(r), size(builtin)) << to_string(choice);
+    }
+    FitOptions named = o;
+    named.parametrization = rule.id();
+    EXPECT_EQ(size(fit_surface(rows, named)), 16);  // it would have won
+  }
+  // Opted in: the default (auto), `fewest`, and the two stages' `fewest` choose it.
+  const RegisteredRule rule("squared_auto_app", "", squared, RuleUse::kAlsoAuto);
+  for (FitMethod method : {FitMethod::kSurface, FitMethod::kSfit01}) {
+    for (Parametrization choice : {Parametrization::kAuto, Parametrization::kFewest}) {
+      if (method == FitMethod::kSfit01 && choice == Parametrization::kAuto) continue;  // paper
+      FitOptions oc = o;
+      oc.method = method;
+      oc.parametrization = choice;
+      const FitResult r = fit_surface(rows, oc);
+      EXPECT_TRUE(r.report.within_tolerance) << to_string(method) << " " << to_string(choice);
+      EXPECT_EQ(r.report.parametrization, rule.id())
+          << to_string(method) << " " << to_string(choice) << ": "
+          << to_string(r.report.parametrization);
+      EXPECT_EQ(size(r), 16) << to_string(method) << " " << to_string(choice);
+      EXPECT_LE(worst(r, rows), 1e-7 * (1 + 1e-9));
+    }
+  }
+  // The two stages' auto is the paper's rule, opted-in rules or not.
+  FitOptions paper = o;
+  paper.method = FitMethod::kSfit01;
+  EXPECT_EQ(fit_surface(rows, paper).report.parametrization, Parametrization::kPaper);
+}
+
 TEST(PublicRegistry, HandlesUnregisterAndMoveTheRegistration) {
   FitMethod id{};
   {

@@ -4,7 +4,7 @@
 // refit: the control points it shows equal the server's quick refit of the same position
 // within 1e-9 of their size, mid-drag and for every answer. Without the hold too, on the two
 // stages' surface and at parameters that move with the points (centripetal): the
-// drag's refit is frozen at the drag's start (src/server/frozen_fit.h); the influence is asked
+// drag's refit is frozen at the drag's start (include/sfit/frozen_refit.h); the influence is asked
 // for when the point is selected, not at the press (the request log).
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";

@@ -61,10 +61,21 @@ class RegisteredMethod {
   bool owns_ = false;
 };
 
+/// Whether the automatic choices (Parametrization::kAuto and kFewest) try a registered rule
+/// beside the built-ins, keeping it where its surface has the fewest control points, or only
+/// a fit that names it uses it.
+enum class RuleUse {
+  kWhenNamed,  ///< only FitOptions::parametrization = its id (or its name) selects it
+  /// also tried, after the built-ins, by `auto` and `fewest` of the surface method and by
+  /// `fewest` of the two stages (whose `auto` is the paper's rule)
+  kAlsoAuto,
+};
+
 /// A parameter rule registered while the handle lives; as RegisteredMethod.
 class RegisteredRule {
  public:
-  RegisteredRule(std::string name, std::string help, RowRuleFunction positions);
+  RegisteredRule(std::string name, std::string help, RowRuleFunction positions,
+                 RuleUse use = RuleUse::kWhenNamed);
   ~RegisteredRule();
   RegisteredRule(RegisteredRule&& other) noexcept;
   RegisteredRule& operator=(RegisteredRule&& other) noexcept;

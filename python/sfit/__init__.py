@@ -19,7 +19,14 @@ from ._signatures import Curvature, curvature as _curvature, install as _install
 _sfit.Surface.curvature = _curvature
 _install(
     _sfit,
-    classes=[_sfit.Surface, _sfit.Fit, _sfit.IncrementalFit, _sfit.Curve, _sfit.CurveFit],
+    classes=[
+        _sfit.Surface,
+        _sfit.Fit,
+        _sfit.IncrementalFit,
+        _sfit.FrozenRefit,
+        _sfit.Curve,
+        _sfit.CurveFit,
+    ],
     functions=["fit", "fit_curve", "fit_options", "load_rows", "load_surface", "output_formats"],
     fit_like={"fit", "IncrementalFit.__init__"},
 )
@@ -29,6 +36,7 @@ from ._sfit import (  # noqa: E402  (after the signatures are in place)
     CurveFit,
     Fit,
     FitProgress,
+    FrozenRefit,
     IncrementalFit,
     Surface,
     __version__,
@@ -47,6 +55,7 @@ __all__ = [
     "Error",
     "Fit",
     "FitProgress",
+    "FrozenRefit",
     "IncrementalFit",
     "Surface",
     "__version__",

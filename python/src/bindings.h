@@ -38,5 +38,6 @@ void bind_io(py::module_& m);
 void bind_geometric(py::module_& m);
 void bind_options(py::module_& m);  // sfit.fit_options() (options.cpp)
 void bind_partial(py::module_& m);  // sfit.dask's chunk pieces (bind_partial.cpp)
+void bind_frozen(py::module_& m);   // sfit.FrozenRefit (bind_frozen.cpp)
 
 }  // namespace sfit::python

@@ -16,6 +16,7 @@ PYBIND11_MODULE(_sfit, m) {
   sfit::python::bind_curve(m);
   sfit::python::bind_progress(m);
   sfit::python::bind_fit(m);
+  sfit::python::bind_frozen(m);
   sfit::python::bind_io(m);
   sfit::python::bind_state(m);
   sfit::python::bind_options(m);

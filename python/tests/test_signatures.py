@@ -12,7 +12,7 @@ import sfit
 from sfit import _signatures
 
 STUB = pathlib.Path(sfit.__file__).with_name("__init__.pyi")
-CLASSES = ["Surface", "Fit", "IncrementalFit", "Curve", "CurveFit"]
+CLASSES = ["Surface", "Fit", "IncrementalFit", "FrozenRefit", "Curve", "CurveFit"]
 
 
 def stub_signature(node):

@@ -44,7 +44,7 @@ json drag_influence(const Session& session, std::size_t row, std::size_t index) 
   };
   if (session.dragging()) return no("a drag is under way");
   std::string why;
-  const auto frozen = session.frozen(&why);  // built once per full fit (frozen_fit.h)
+  const auto frozen = session.frozen(&why);  // built once per full fit (sfit/frozen_refit.h)
   if (!frozen) return no(why);
 
   const auto t0 = std::chrono::steady_clock::now();

@@ -1,10 +1,10 @@
 // The drag's linear prediction (docs/editor.md, "How a drag is refitted"): the quick refit of
 // a drag step is least squares at the counts, knots and parameters of the full fit the drag
-// started from, frozen for the drag (frozen_fit.h), a LINEAR map of the data. Moving point k by
-// d then moves every control point (i, j) by g_k(i, j) d, where g_k is the fit of data that
-// are zero but for 1 at point k (the same number for x, y and z). The page asks for g_k when
-// a point is selected and draws S0 + g_k d itself at every pointer move, with no request on
-// the critical path; the server's answers for the same moves replace it when they arrive.
+// started from, frozen for the drag (sfit/frozen_refit.h), a LINEAR map of the data. Moving point k
+// by d then moves every control point (i, j) by g_k(i, j) d, where g_k is the fit of data that are
+// zero but for 1 at point k (the same number for x, y and z). The page asks for g_k when a point is
+// selected and draws S0 + g_k d itself at every pointer move, with no request on the critical path;
+// the server's answers for the same moves replace it when they arrive.
 #pragma once
 
 #include <cstddef>

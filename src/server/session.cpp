@@ -75,9 +75,9 @@ const Rows& Session::shown_rows() const {
   return drag_ && !drag_->final ? drag_rows(*drag_) : fit_->rows();
 }
 
-std::shared_ptr<const FrozenFit> Session::frozen(std::string* why) const {
+std::shared_ptr<const FrozenRefit> Session::frozen(std::string* why) const {
   if (frozen_serial_ != fit_serial_) {
-    frozen_ = FrozenFit::make(fit_->rows(), fit_->result(), frozen_why_);
+    frozen_ = FrozenRefit::make(fit_->rows(), fit_->result(), frozen_why_);
     frozen_serial_ = fit_serial_;
   }
   if (why) *why = frozen_ ? std::string() : frozen_why_;
@@ -131,7 +131,7 @@ void Session::move(std::size_t row, std::size_t index, const Point& to, MovePhas
     d.row = row;
     d.index = index;
     d.before = row_points(row);
-    // The counts, knots and parameters of the full fit, frozen for the drag (frozen_fit.h);
+    // The counts, knots and parameters of the full fit, frozen for the drag (sfit/frozen_refit.h);
     // where that cannot be made, the refit at its counts (quick_refit.h).
     d.frozen = frozen();
     if (d.frozen) {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "frozen_fit.h"
+#include "sfit/frozen_refit.h"
 #include "sfit/incremental.h"
 #include "sfit/rows.h"
 #include "sfit/surface_fit.h"
@@ -80,19 +80,19 @@ class Session {
   /// within T (its message; best_effort.h); empty when the full fit is the search's. Every
   /// edit tries the search again.
   const std::string& best_effort() const { return best_effort_; }
-  /// The quick refit of a drag from the full fit as it is (frozen_fit.h), built once per full
-  /// fit and kept until the fit changes (the influence of a selected point asks for it before
+  /// The quick refit of a drag from the full fit as it is (sfit/frozen_refit.h), built once per
+  /// full fit and kept until the fit changes (the influence of a selected point asks for it before
   /// the drag, which then starts without building it); nullptr with `why` where it cannot be
   /// made (the drag then refits at the counts by IncrementalFit, quick_refit.h).
-  std::shared_ptr<const FrozenFit> frozen(std::string* why = nullptr) const;
+  std::shared_ptr<const FrozenRefit> frozen(std::string* why = nullptr) const;
 
  private:
   struct Drag {
     std::size_t row = 0, index = 0;
-    std::vector<Point> before;                // the row at the start of the drag
-    std::unique_ptr<IncrementalFit> quick;    // where no frozen refit could be made
-    std::shared_ptr<const FrozenFit> frozen;  // else: the refit frozen at the drag's start
-    Rows rows;                                // and its rows and result
+    std::vector<Point> before;                  // the row at the start of the drag
+    std::unique_ptr<IncrementalFit> quick;      // where no frozen refit could be made
+    std::shared_ptr<const FrozenRefit> frozen;  // else: the refit frozen at the drag's start
+    Rows rows;                                  // and its rows and result
     FitResult result;
     bool final = false;  // the last step was a rest: fit_ is at the current position
   };
@@ -115,7 +115,7 @@ class Session {
   std::size_t rows_refitted_ = 0;
   std::string best_effort_;
   long fit_serial_ = 0;  // counts the changes of fit_ (the frozen refit's cache key)
-  mutable std::shared_ptr<const FrozenFit> frozen_;
+  mutable std::shared_ptr<const FrozenRefit> frozen_;
   mutable std::string frozen_why_;
   mutable long frozen_serial_ = -1;
 };

@@ -114,14 +114,17 @@ std::string names_of(Registry<Entry>& r) {
 }
 
 template <class Entry, class Fn>
-auto add_entry(Registry<Entry>& r, std::string name, std::string help, Fn f, const char* option) {
+auto add_entry(Registry<Entry>& r, std::string name, std::string help, Fn f, const char* option,
+               bool automatic = false) {
   if (name.empty() || find_name(r, name))
     throw Error(ErrorCode::kUsage,
                 std::string("a ") + option + " named \"" + name + "\" is registered already" +
                     (name.empty() ? " (an empty name)" : ""),
                 Place{.option = option});
   const auto id = static_cast<decltype(Entry{}.id)>(r.next_id++);
-  r.entries.push_back(Entry{id, std::move(name), std::move(help), std::move(f)});
+  Entry e{id, std::move(name), std::move(help), std::move(f)};
+  if constexpr (requires { e.automatic; }) e.automatic = automatic;
+  r.entries.push_back(std::move(e));
   r.active.push_back(true);
   ++generation;
   return id;
@@ -189,6 +192,14 @@ std::vector<RuleEntry> rules() {
   return listed(rule_registry());
 }
 
+std::vector<Parametrization> automatic_rules() {
+  const std::lock_guard lock(registry_mutex());
+  std::vector<Parametrization> out;
+  for (const RuleEntry& e : listed(rule_registry()))
+    if (e.automatic) out.push_back(e.id);
+  return out;
+}
+
 long registry_generation() {
   const std::lock_guard lock(registry_mutex());
   return generation;
@@ -199,10 +210,11 @@ FitMethod register_method(std::string name, std::string help, MethodFunction fit
   return add_entry(method_registry(), std::move(name), std::move(help), std::move(fit), "method");
 }
 
-Parametrization register_rule(std::string name, std::string help, PositionFunction positions) {
+Parametrization register_rule(std::string name, std::string help, PositionFunction positions,
+                              bool automatic) {
   const std::lock_guard lock(registry_mutex());
   return add_entry(rule_registry(), std::move(name), std::move(help), std::move(positions),
-                   "parameters");
+                   "parameters", automatic);
 }
 
 void unregister_method(FitMethod id) {
@@ -252,8 +264,10 @@ RegisteredMethod& RegisteredMethod::operator=(RegisteredMethod&& other) noexcept
   return *this;
 }
 
-RegisteredRule::RegisteredRule(std::string name, std::string help, RowRuleFunction positions)
-    : id_(detail::register_rule(std::move(name), std::move(help), std::move(positions))),
+RegisteredRule::RegisteredRule(std::string name, std::string help, RowRuleFunction positions,
+                               RuleUse use)
+    : id_(detail::register_rule(std::move(name), std::move(help), std::move(positions),
+                                use == RuleUse::kAlsoAuto)),
       owns_(true) {}
 
 RegisteredRule::~RegisteredRule() {

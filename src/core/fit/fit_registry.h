@@ -65,6 +65,9 @@ struct RuleEntry {
   /// the chord rule); empty for the paper's rule (Greville), the geometric rule (per point) and
   /// the choices that are no rule (fewest, auto).
   PositionFunction positions;
+  /// Tried by the automatic choices (kAuto, kFewest) beside the built-ins (registered rules
+  /// that opted in; the built-ins are listed by rules_of() and SurfaceFitter themselves).
+  bool automatic = false;
 };
 
 /// The method registered as `id`; throws Error(kUsage, option "method") where none is.
@@ -80,12 +83,15 @@ std::string_view rule_name(Parametrization id);
 /// Every registered method / rule, built-ins first, in registration order.
 std::vector<MethodEntry> methods();
 std::vector<RuleEntry> rules();
+/// The registered (not built-in) rules the automatic choices try, in registration order.
+std::vector<Parametrization> automatic_rules();
 /// Changes with every registration or removal (the option table rebuilds on it).
 long registry_generation();
 
 /// Registers a method or rule under a new name; its id. Throws Error(kUsage) on a name taken.
 FitMethod register_method(std::string name, std::string help, MethodFunction fit);
-Parametrization register_rule(std::string name, std::string help, PositionFunction positions);
+Parametrization register_rule(std::string name, std::string help, PositionFunction positions,
+                              bool automatic = false);
 /// Removes a registered method or rule (not a built-in); its name is free again.
 void unregister_method(FitMethod id);
 void unregister_rule(Parametrization id);

@@ -10,6 +10,7 @@
 
 #include "basis_knots.h"
 #include "fit_frame.h"
+#include "fit_registry.h"
 #include "minimax.h"
 #include "parallel.h"
 #include "sfit/fold_check.h"
@@ -146,10 +147,14 @@ PairVerdict Frame::judge(const Surface& s, std::span<const double> u, std::span<
 }
 
 std::vector<Parametrization> rules_of(Parametrization p) {
-  if (p == Parametrization::kAuto || p == Parametrization::kFewest)
-    return {Parametrization::kGeometric, Parametrization::kUniform, Parametrization::kChord,
-            Parametrization::kCentripetal, Parametrization::kPaper};
-  return {p};
+  if (p != Parametrization::kAuto && p != Parametrization::kFewest) return {p};
+  std::vector<Parametrization> out = {Parametrization::kGeometric, Parametrization::kUniform,
+                                      Parametrization::kChord, Parametrization::kCentripetal,
+                                      Parametrization::kPaper};
+  // Registered rules that opted in (sfit/fit_registry.h, RuleUse::kAlsoAuto), after the
+  // built-ins: a tie keeps the built-in.
+  for (Parametrization r : automatic_rules()) out.push_back(r);
+  return out;
 }
 
 TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads,

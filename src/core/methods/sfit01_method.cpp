@@ -12,6 +12,7 @@
 #include "fit_driver.h"
 #include "fit_frame.h"
 #include "fit_monitor.h"
+#include "fit_registry.h"
 #include "sfit/error.h"
 #include "sfit/fold_check.h"
 #include "sfit01_attempt.h"
@@ -85,8 +86,10 @@ FitResult SurfaceFitter::fit_given(const Rows& rows) {
   // what this does.
   const double t0 = now();
   std::optional<FitResult> best;
-  for (Parametrization rule : {Parametrization::kPaper, Parametrization::kUniform,
-                               Parametrization::kChord, Parametrization::kCentripetal}) {
+  std::vector<Parametrization> rules = {Parametrization::kPaper, Parametrization::kUniform,
+                                        Parametrization::kChord, Parametrization::kCentripetal};
+  for (Parametrization r : automatic_rules()) rules.push_back(r);  // opted in, after these
+  for (Parametrization rule : rules) {
     FitResult r = fit_rule(rows, rule);
     const auto size = [](const FitResult& f) {
       return static_cast<long>(f.surface.count_u) * f.surface.count_v;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "basis.h"
 #include "knots.h"
@@ -53,11 +54,16 @@ double ScatteredProblem::cost(int nu, int nv) const {
   return 0.5 * static_cast<double>(nu) * nv * band * band;
 }
 
-void scattered_add(const ScatteredSpec& spec, int nu, int nv, std::span<const Point> pts,
-                   std::span<const double> wts, std::span<const double> fu,
-                   std::span<const double> fv, std::vector<double>& band, std::vector<Point>& rhs) {
+namespace {
+
+// The data term of points whose bases `basis(k, bu, bv)` gives (it fills the p + 1 and q + 1
+// values and returns the first control points {f0, f1}), added into `band` and `rhs` (`pts`
+// empty: the band only).
+template <class Basis>
+void add_points(const ScatteredSpec& spec, int nu, int nv, std::size_t count,
+                std::span<const Point> pts, std::span<const double> wts, Basis&& basis,
+                std::vector<double>& band, std::vector<Point>& rhs) {
   const int p = spec.degree_u, q = spec.degree_v;
-  const bool cu = spec.closed_u, cv = spec.closed_v;
   const int wv = 2 * q + 1, W = (2 * p + 1) * wv;
   const int n_local = (p + 1) * (q + 1);
   // Offsets in the band store of local product (x, y): depends on the local indices only.
@@ -66,13 +72,11 @@ void scattered_add(const ScatteredSpec& spec, int nu, int nv, std::span<const Po
     for (int y = 0; y < n_local; ++y)
       offset[x * n_local + y] =
           (y / (q + 1) - x / (q + 1) + p) * wv + (y % (q + 1) - x % (q + 1) + q);
-  const double eu = domain(p, nu, cu), ev = domain(q, nv, cv);
   std::array<double, kMaxDegree + 1> bu, bv;
   std::vector<double> w(n_local);
   std::vector<std::size_t> idx(n_local);
-  for (std::size_t k = 0; k < pts.size(); ++k) {
-    const int f0 = eval_basis(p, nu, cu, fu[k] * eu, bu.data());
-    const int f1 = eval_basis(q, nv, cv, fv[k] * ev, bv.data());
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto [f0, f1] = basis(k, bu.data(), bv.data());
     const double weight = wts.empty() ? 1.0 : wts[k];
     for (int a = 0; a <= p; ++a)
       for (int c = 0; c <= q; ++c) {
@@ -85,9 +89,41 @@ void scattered_add(const ScatteredSpec& spec, int nu, int nv, std::span<const Po
       double* row = band.data() + idx[x] * W;
       const int* off = offset.data() + x * n_local;
       for (int y = 0; y < n_local; ++y) row[off[y]] += wx * w[y];
-      rhs[idx[x]] += wx * pts[k];
+      if (!pts.empty()) rhs[idx[x]] += wx * pts[k];
     }
   }
+}
+
+}  // namespace
+
+void scattered_add(const ScatteredSpec& spec, int nu, int nv, std::span<const Point> pts,
+                   std::span<const double> wts, std::span<const double> fu,
+                   std::span<const double> fv, std::vector<double>& band, std::vector<Point>& rhs) {
+  const int p = spec.degree_u, q = spec.degree_v;
+  const bool cu = spec.closed_u, cv = spec.closed_v;
+  const double eu = domain(p, nu, cu), ev = domain(q, nv, cv);
+  add_points(
+      spec, nu, nv, pts.size(), pts, wts,
+      [&](std::size_t k, double* bu, double* bv) {
+        return std::pair<int, int>{eval_basis(p, nu, cu, fu[k] * eu, bu),
+                                   eval_basis(q, nv, cv, fv[k] * ev, bv)};
+      },
+      band, rhs);
+}
+
+void scattered_add_basis(const ScatteredSpec& spec, int nu, int nv, std::span<const Point> pts,
+                         std::span<const int> first_u, std::span<const double> bu,
+                         std::span<const int> first_v, std::span<const double> bv,
+                         std::vector<double>& band, std::vector<Point>& rhs) {
+  const int p = spec.degree_u, q = spec.degree_v;
+  add_points(
+      spec, nu, nv, first_u.size(), pts, {},
+      [&](std::size_t k, double* a, double* b) {
+        std::copy_n(&bu[k * (p + 1)], p + 1, a);
+        std::copy_n(&bv[k * (q + 1)], q + 1, b);
+        return std::pair<int, int>{first_u[k], first_v[k]};
+      },
+      band, rhs);
 }
 
 bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) const {
@@ -134,11 +170,36 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) con
 
 bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,
                      const std::vector<Point>& rhs, double smoothing, Surface& out) {
+  const std::size_t N = static_cast<std::size_t>(nu) * nv;
+  if (rhs.size() != N || spec.closed_v) return false;  // (the rule is open across)
+  ScatteredFactor f;
+  if (!f.factor(spec, nu, nv, band, smoothing)) return false;
+  std::vector<Point> x = rhs;
+  f.solve(x);
+  out.degree_u = spec.degree_u;
+  out.degree_v = spec.degree_v;
+  out.periodic_u = spec.closed_u;
+  out.periodic_v = spec.closed_v;
+  out.count_u = nu;
+  out.count_v = nv;
+  out.control = std::move(x);
+  for (const Point& c : out.control)
+    if (!c.allFinite()) return false;
+  return true;
+}
+
+long ScatteredFactor::pos(std::size_t I) const {
+  const long i = static_cast<long>(I / nv_), l = static_cast<long>(I % nv_);
+  return v_major_ ? l * nu_ + i : i * nv_ + l;
+}
+
+bool ScatteredFactor::factor(const ScatteredSpec& spec, int nu, int nv,
+                             const std::vector<double>& band, double smoothing) {
   const int p = spec.degree_u, q = spec.degree_v;
   const bool cu = spec.closed_u, cv = spec.closed_v;
   const int wv = 2 * q + 1, W = (2 * p + 1) * wv;
   const std::size_t N = static_cast<std::size_t>(nu) * nv;
-  if (band.size() != N * W || rhs.size() != N) return false;
+  if (band.size() != N * W || (cu && cv)) return false;
   double trace = 0;
   const int centre = p * wv + q;
   for (std::size_t I = 0; I < N; ++I) trace += band[I * W + centre];
@@ -146,17 +207,21 @@ bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vecto
   const double lambda = smoothing * trace / static_cast<double>(N);
   // The banded system in the ordering of the narrower band: u-major (i nv + l, band p nv + q)
   // or v-major (l nu + i, band q nu + p; always where u is closed, its wrap then staying within
-  // a block: band (q + 1) nu - 1).
-  const bool v_major = cu || static_cast<long>(q) * nu + p < static_cast<long>(p) * nv + q;
-  const long bw = cu ? static_cast<long>(q + 1) * nu - 1
-                     : (v_major ? static_cast<long>(q) * nu + p : static_cast<long>(p) * nv + q);
-  if (cv && !v_major) return false;  // (not reached: the rule is open across)
+  // a block: band (q + 1) nu - 1; never where v is closed: band (p + 1) nv - 1).
+  nu_ = nu;
+  nv_ = nv;
+  v_major_ = cu || (!cv && static_cast<long>(q) * nu + p < static_cast<long>(p) * nv + q);
+  const long bw = cu   ? static_cast<long>(q + 1) * nu - 1
+                  : cv ? static_cast<long>(p + 1) * nv - 1
+                       : (v_major_ ? static_cast<long>(q) * nu + p : static_cast<long>(p) * nv + q);
   const long Nb = static_cast<long>(N);
   const long b = std::min(bw, Nb - 1), w1 = b + 1;
-  auto pos = [&](int i, int l) -> long {
-    return v_major ? static_cast<long>(l) * nu + i : static_cast<long>(i) * nv + l;
+  b_ = b;
+  L_.assign(static_cast<std::size_t>(Nb * w1), 0.0);
+  std::vector<double>& L = L_;
+  auto at = [&](int i, int l) -> long {
+    return v_major_ ? static_cast<long>(l) * nu + i : static_cast<long>(i) * nv + l;
   };
-  std::vector<double> L(static_cast<std::size_t>(Nb * w1), 0.0);
   // L(r, c) for c <= r at L[r w1 + c - r + b].
   auto add = [&](long r, long c, double x) {
     if (c > r) std::swap(r, c);
@@ -166,12 +231,12 @@ bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vecto
   };
   for (std::size_t I = 0; I < N; ++I) {
     const int i = static_cast<int>(I / nv), l = static_cast<int>(I % nv);
-    const long r = pos(i, l);
+    const long r = at(i, l);
     for (int da = -p; da <= p; ++da)
       for (int dc = -q; dc <= q; ++dc) {
         const double val = band[I * W + (da + p) * wv + (dc + q)];
         if (val == 0) continue;
-        const long c = pos((i + da + nu) % nu, (l + dc + nv) % nv);
+        const long c = at((i + da + nu) % nu, (l + dc + nv) % nv);
         if (c > r) continue;  // the upper triangle: its mirror is added from the other side
         if (!add(r, c, val)) return false;
       }
@@ -193,10 +258,10 @@ bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vecto
   if (lambda > 0) {
     for (int l = 0; l < nv; ++l)
       for (int i = cu ? 0 : 1; i < (cu ? nu : nu - 1); ++i)
-        add_difference(pos((i - 1 + nu) % nu, l), pos(i, l), pos((i + 1) % nu, l));
+        add_difference(at((i - 1 + nu) % nu, l), at(i, l), at((i + 1) % nu, l));
     for (int i = 0; i < nu; ++i)
       for (int l = cv ? 0 : 1; l < (cv ? nv : nv - 1); ++l)
-        add_difference(pos(i, (l - 1 + nv) % nv), pos(i, l), pos(i, (l + 1) % nv));
+        add_difference(at(i, (l - 1 + nv) % nv), at(i, l), at(i, (l + 1) % nv));
   }
   // Banded Cholesky, L L^T, in place.
   for (long r = 0; r < Nb; ++r) {
@@ -218,12 +283,19 @@ bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vecto
       }
     }
   }
-  std::vector<Point> x(N);
-  for (std::size_t I = 0; I < N; ++I)
-    x[static_cast<std::size_t>(pos(static_cast<int>(I / nv), static_cast<int>(I % nv)))] = rhs[I];
+  return true;
+}
+
+template <class T>
+void ScatteredFactor::solve_in_place(std::vector<T>& io) const {
+  const std::size_t N = static_cast<std::size_t>(nu_) * nv_;
+  const long Nb = static_cast<long>(N), b = b_, w1 = b + 1;
+  const std::vector<double>& L = L_;
+  std::vector<T> x(N);
+  for (std::size_t I = 0; I < N; ++I) x[static_cast<std::size_t>(pos(I))] = io[I];
   for (long r = 0; r < Nb; ++r) {
     const double* Lr = L.data() + r * w1 - r + b;
-    Point sum = x[r];
+    T sum = x[r];
     for (long k = std::max(0L, r - b); k < r; ++k) sum -= Lr[k] * x[k];
     x[r] = sum / Lr[r];
   }
@@ -232,19 +304,14 @@ bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vecto
     x[r] /= Lr[r];
     for (long k = std::max(0L, r - b); k < r; ++k) x[k] -= Lr[k] * x[r];
   }
-  out.degree_u = p;
-  out.degree_v = q;
-  out.periodic_u = cu;
-  out.periodic_v = cv;
-  out.count_u = nu;
-  out.count_v = nv;
-  out.control.resize(N);
-  for (std::size_t I = 0; I < N; ++I) {
-    out.control[I] =
-        x[static_cast<std::size_t>(pos(static_cast<int>(I / nv), static_cast<int>(I % nv)))];
-    if (!out.control[I].allFinite()) return false;
-  }
-  return true;
+  for (std::size_t I = 0; I < N; ++I) io[I] = x[static_cast<std::size_t>(pos(I))];
+}
+
+void ScatteredFactor::solve(std::vector<Point>& x) const {
+  solve_in_place(x);
+}
+void ScatteredFactor::solve(std::vector<double>& x) const {
+  solve_in_place(x);
 }
 
 }  // namespace sfit::detail

@@ -45,10 +45,41 @@ struct ScatteredSpec {
 void scattered_add(const ScatteredSpec& spec, int nu, int nv, std::span<const Point> pts,
                    std::span<const double> wts, std::span<const double> fu,
                    std::span<const double> fv, std::vector<double>& band, std::vector<Point>& rhs);
+/// The data term as scattered_add() with each point's basis given instead of evaluated on
+/// uniform knots (any knots): per point the first control point along u (v) and degree_u + 1
+/// (degree_v + 1) values, as DirectionBasis at order 0 (sfit/surface_eval.h). `pts` empty:
+/// the band only.
+void scattered_add_basis(const ScatteredSpec& spec, int nu, int nv, std::span<const Point> pts,
+                         std::span<const int> first_u, std::span<const double> bu,
+                         std::span<const int> first_v, std::span<const double> bv,
+                         std::vector<double>& band, std::vector<Point>& rhs);
 /// The surface of a summed data term (scattered_add()) plus the smoothness term of weight
 /// `smoothing` (relative), as ScatteredProblem::solve().
 bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,
                      const std::vector<Point>& rhs, double smoothing, Surface& out);
+
+/// scattered_solve()'s system (the summed data term plus the smoothness term) factorised once,
+/// then solved for any number of right-hand sides: the banded Cholesky factor in the ordering
+/// of the narrower band (v-major where u is closed, u-major where v is closed; not both).
+class ScatteredFactor {
+ public:
+  /// false where the system is singular (a pivot at round-off), the band store does not match
+  /// (nu, nv) or both directions are closed.
+  bool factor(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,
+              double smoothing);
+  /// x <- A^-1 x in place, x[I] for unknown I = i nv + l (the Surface's order).
+  void solve(std::vector<Point>& x) const;
+  void solve(std::vector<double>& x) const;
+
+ private:
+  template <class T>
+  void solve_in_place(std::vector<T>& x) const;
+  long pos(std::size_t I) const;
+  int nu_ = 0, nv_ = 0;
+  bool v_major_ = false;
+  long b_ = 0;
+  std::vector<double> L_;  // L(r, c), c <= r, at L_[r (b_ + 1) + c - r + b_]
+};
 
 class ScatteredProblem {
  public:

@@ -1,18 +1,18 @@
-#include "frozen_fit.h"
+#include "sfit/frozen_refit.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 
+#include "scattered_lsq.h"
+#include "sfit/error.h"
 #include "sfit/fit_check.h"
 #include "sfit/surface_eval.h"
 
-namespace sfit::server {
+namespace sfit {
 
 namespace {
 
@@ -20,24 +20,25 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The weight of the smoothness term (the control net's second differences along u and v)
-// relative to the data term's mean diagonal: it only decides control points that no data
-// point determines (a knot span without data), where the system would be singular, and moves
-// the others by about this fraction of T's scale, far below the check's resolution.
-constexpr double kSmoothing = 1e-8;
+// The weight of the smoothness term (the control net's second differences along u and v, the
+// scattered least squares' own: scattered_lsq.h) relative to the data term's mean diagonal: it
+// only decides control points that no data point determines (a knot span without data), where
+// the system would be singular, and moves the others by about this fraction of T's scale, far
+// below the check's resolution.
+constexpr double kFrozenSmoothing = 1e-8;
 
 }  // namespace
 
-struct FrozenFit::Impl {
+struct FrozenRefit::Impl {
   FitResult at;  // the full fit the drag starts from: surface (template), u, v, report
   std::vector<std::size_t> offsets;
   Point centre = Point::Zero();
   int p = 0, q = 0, nu = 0, nv = 0;
   std::vector<int> fu, fv;     // per point: first control point along u, v (distinct index)
   std::vector<double> bu, bv;  // per point: p + 1, q + 1 basis values
-  // Eigen's simplicial Cholesky (AMD ordering): 0.27 s at 84 x 74 control points and 10^4
-  // points (load 6), where CHOLMOD's supernodal one took 0.85-0.93 s.
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  // The general case: the scattered least squares' banded Cholesky of the data term plus its
+  // smoothness term (scattered_lsq.h), factorised once.
+  detail::ScatteredFactor factor;
   // Rows of one length and one v each, most sharing their u (a grid at the uniform or paper
   // rule, a few rows edited): N = N0 + P E P^T, where N0 = Gu (x) Gv is the Kronecker product of
   // the shared rows' Gram matrix Gu and the rows' Gram matrix Gv (control point i * nv + j),
@@ -64,7 +65,16 @@ struct FrozenFit::Impl {
   }
   // N^-1 rhs, column by column (rhs: nu nv rows, control point i * nv + j).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const {
-    if (!separable) return llt.solve(rhs);
+    if (!separable) {
+      Eigen::MatrixXd out = rhs;
+      std::vector<double> x(static_cast<std::size_t>(rhs.rows()));
+      for (Eigen::Index a = 0; a < rhs.cols(); ++a) {
+        Eigen::VectorXd::Map(x.data(), rhs.rows()) = rhs.col(a);
+        factor.solve(x);
+        out.col(a) = Eigen::VectorXd::Map(x.data(), rhs.rows());
+      }
+      return out;
+    }
     Eigen::MatrixXd out(rhs.rows(), rhs.cols());
     const Eigen::Index m = static_cast<Eigen::Index>(cols.size()) * nu;
     for (Eigen::Index a = 0; a < rhs.cols(); ++a) {
@@ -99,7 +109,7 @@ struct FrozenFit::Impl {
 // The Kronecker case (separable): every row of one length, one v per row, the u shared by the
 // most rows, the others touching at most kMaxColumns columns of control points, and the
 // factors sound (every span has data); false where not.
-bool FrozenFit::Impl::make_separable(const Rows& rows, const FitResult& at) {
+bool FrozenRefit::Impl::make_separable(const Rows& rows, const FitResult& at) {
   // Bounds on the dense work: Gu, Gv inverted (nu^3, nv^3) and I + E K factorised
   // (nu |J|)^3; beyond them the sparse factorisation.
   constexpr int kMaxColumns = 12, kMaxCount = 500, kMaxCorrection = 800;
@@ -194,11 +204,11 @@ bool FrozenFit::Impl::make_separable(const Rows& rows, const FitResult& at) {
   return true;
 }
 
-FrozenFit::FrozenFit(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-FrozenFit::~FrozenFit() = default;
+FrozenRefit::FrozenRefit(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+FrozenRefit::~FrozenRefit() = default;
 
-std::shared_ptr<const FrozenFit> FrozenFit::make(const Rows& rows, const FitResult& at,
-                                                 std::string& why) {
+std::shared_ptr<const FrozenRefit> FrozenRefit::make(const Rows& rows, const FitResult& at,
+                                                     std::string& why) {
   const auto t0 = std::chrono::steady_clock::now();
   const Surface& s = at.surface;
   const std::size_t n = static_cast<std::size_t>(s.count_u) * s.count_v;
@@ -261,78 +271,40 @@ std::shared_ptr<const FrozenFit> FrozenFit::make(const Rows& rows, const FitResu
   }
 
   if (m.make_separable(rows, at)) {
-    auto out = std::shared_ptr<FrozenFit>(new FrozenFit(std::move(im)));
+    auto out = std::shared_ptr<FrozenRefit>(new FrozenRefit(std::move(im)));
     out->seconds_ = seconds_since(t0);
     return out;
   }
 
-  // The normal equations (data term plus the smoothness term), by neighbour offsets.
-  const int hu = std::max(m.p, 2), hv = std::max(m.q, 2);
-  const int wv = 2 * hv + 1, width = (2 * hu + 1) * wv;
-  std::vector<double> band(n * width, 0.0);
-  const auto slot = [&](int c, int di, int dj) -> double& {
-    return band[static_cast<std::size_t>(c) * width + (di + hu) * wv + (dj + hv)];
-  };
-  for (std::size_t k = 0; k < total; ++k) {
-    const double* a = &m.bu[k * (m.p + 1)];
-    const double* b = &m.bv[k * (m.q + 1)];
-    for (int x = 0; x <= m.p; ++x)
-      for (int y = 0; y <= m.q; ++y) {
-        const int c = ((m.fu[k] + x) % m.nu) * m.nv + (m.fv[k] + y) % m.nv;
-        const double w = a[x] * b[y];
-        for (int x2 = 0; x2 <= m.p; ++x2)
-          for (int y2 = 0; y2 <= m.q; ++y2) slot(c, x2 - x, y2 - y) += w * a[x2] * b[y2];
-      }
-  }
-  double diag = 0;
-  for (std::size_t c = 0; c < n; ++c) diag += slot(static_cast<int>(c), 0, 0);
-  const double lambda = kSmoothing * diag / static_cast<double>(n);
-  // Second differences of the net along u (along v likewise), wrapped where periodic.
-  const auto smooth = [&](bool along_u) {
-    const int len = along_u ? m.nu : m.nv, lines = along_u ? m.nv : m.nu;
-    const bool wrap = along_u ? s.periodic_u : s.periodic_v;
-    for (int l = 0; l < lines; ++l)
-      for (int i = wrap ? 0 : 1; i < (wrap ? len : len - 1); ++i) {
-        const int at3[3] = {(i - 1 + len) % len, i, (i + 1) % len};
-        const double r[3] = {1, -2, 1};
-        for (int e = 0; e < 3; ++e)
-          for (int f = 0; f < 3; ++f) {
-            const int c = along_u ? at3[e] * m.nv + l : l * m.nv + at3[e];
-            slot(c, along_u ? f - e : 0, along_u ? 0 : f - e) += lambda * r[e] * r[f];
-          }
-      }
-  };
-  smooth(true);
-  smooth(false);
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(n * static_cast<std::size_t>(m.p + m.q + 2) * 4);
-  for (int c = 0; c < static_cast<int>(n); ++c) {
-    const int i = c / m.nv, j = c % m.nv;
-    for (int di = -hu; di <= hu; ++di)
-      for (int dj = -hv; dj <= hv; ++dj) {
-        const double val = slot(c, di, dj);
-        if (val == 0) continue;
-        const int i2 = (i + di + m.nu) % m.nu, j2 = (j + dj + m.nv) % m.nv;
-        const int c2 = i2 * m.nv + j2;
-        if (c2 >= c) trip.emplace_back(c2, c, val);  // the lower triangle
-      }
-  }
-  Eigen::SparseMatrix<double> N(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-  N.setFromTriplets(trip.begin(), trip.end());
-  m.llt.compute(N);
-  if (m.llt.info() != Eigen::Success) {
-    why = "the frozen normal equations are singular";
+  // The normal equations (data term plus the smoothness term), the scattered least squares'
+  // assembly at these bases and its banded factorisation.
+  const detail::ScatteredSpec spec{m.p, m.q, s.periodic_u, s.periodic_v, 1};
+  std::vector<double> band(n * (2 * m.p + 1) * (2 * m.q + 1), 0.0);
+  std::vector<Point> unused;
+  detail::scattered_add_basis(spec, m.nu, m.nv, {}, m.fu, m.bu, m.fv, m.bv, band, unused);
+  if (!m.factor.factor(spec, m.nu, m.nv, band, kFrozenSmoothing)) {
+    why = s.periodic_u && s.periodic_v
+              ? "a surface closed both ways (the frozen refit's band does not take it)"
+              : "the frozen normal equations are singular";
     return nullptr;
   }
-  auto out = std::shared_ptr<FrozenFit>(new FrozenFit(std::move(im)));
+  auto out = std::shared_ptr<FrozenRefit>(new FrozenRefit(std::move(im)));
   out->seconds_ = seconds_since(t0);
   return out;
 }
 
-FitResult FrozenFit::refit(const Rows& rows) const {
+FitResult FrozenRefit::refit(const Rows& rows) const {
   const auto t0 = std::chrono::steady_clock::now();
   const Impl& m = *impl_;
   const std::size_t n = static_cast<std::size_t>(m.nu) * m.nv;
+  if (rows.size() + 1 != m.offsets.size() || rows.offsets() != m.offsets)
+    throw Error(ErrorCode::kUsage,
+                "the frozen refit takes rows of the sizes of its fit (" +
+                    std::to_string(m.offsets.size() - 1) + " rows, " +
+                    std::to_string(m.offsets.back()) + " points); got " +
+                    std::to_string(rows.size()) + " rows, " + std::to_string(rows.total_points()) +
+                    " points",
+                Place{}, {static_cast<double>(rows.size())});
   const std::vector<Point>& pts = rows.points();
   Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(n), 3);
   for (std::size_t k = 0; k < pts.size(); ++k) {
@@ -364,13 +336,18 @@ FitResult FrozenFit::refit(const Rows& rows) const {
   return out;
 }
 
-std::vector<double> FrozenFit::influence(std::size_t row, std::size_t index) const {
+std::vector<double> FrozenRefit::influence(std::size_t row, std::size_t index) const {
   const Impl& m = *impl_;
   const std::size_t n = static_cast<std::size_t>(m.nu) * m.nv;
+  if (row + 1 >= m.offsets.size() || index >= m.offsets[row + 1] - m.offsets[row])
+    throw Error(ErrorCode::kUsage,
+                "no point " + std::to_string(index) + " in row " + std::to_string(row) +
+                    " of the frozen refit's rows",
+                Place{.row = static_cast<long>(row), .point = static_cast<long>(index)});
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
   m.each(m.offsets[row] + index, [&](int c, double w) { rhs[c] += w; });
   const Eigen::VectorXd g = m.solve(rhs);
   return {g.data(), g.data() + g.size()};
 }
 
-}  // namespace sfit::server
+}  // namespace sfit
