@@ -90,7 +90,8 @@ void scattered_add(const ScatteredSpec& spec, int nu, int nv, std::span<const Po
   }
 }
 
-bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) const {
+bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out, double calm,
+                             const Point* normal) const {
   if (nu < min_u() || nv < min_v()) return false;
   const int W = (2 * spec_.degree_u + 1) * (2 * spec_.degree_v + 1);
   const std::size_t N = static_cast<std::size_t>(nu) * nv;
@@ -129,11 +130,12 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) con
       pt = Part{};
     }
   }
-  return scattered_solve(spec_, nu, nv, band, rhs, smoothing, out);
+  return scattered_solve(spec_, nu, nv, band, rhs, smoothing, out, calm, normal);
 }
 
 bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,
-                     const std::vector<Point>& rhs, double smoothing, Surface& out) {
+                     const std::vector<Point>& rhs, double smoothing, Surface& out, double calm,
+                     const Point* normal) {
   const int p = spec.degree_u, q = spec.degree_v;
   const bool cu = spec.closed_u, cv = spec.closed_v;
   const int wv = 2 * q + 1, W = (2 * p + 1) * wv;
@@ -198,39 +200,74 @@ bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vecto
       for (int l = cv ? 0 : 1; l < (cv ? nv : nv - 1); ++l)
         add_difference(pos(i, (l - 1 + nv) % nv), pos(i, l), pos(i, (l + 1) % nv));
   }
-  // Banded Cholesky, L L^T, in place.
-  for (long r = 0; r < Nb; ++r) {
-    double* Lr = L.data() + r * w1 - r + b;  // Lr[c] = L(r, c)
-    for (long c = std::max(0L, r - b); c <= r; ++c) {
-      const double* Lc = L.data() + c * w1 - c + b;
-      // Four partial sums: the dot product vectorises (fixed order: the same bits each run).
-      double s4[4] = {0, 0, 0, 0};
-      long k = std::max(0L, r - b);
-      for (; k + 4 <= c; k += 4)
-        for (int e = 0; e < 4; ++e) s4[e] += Lr[k + e] * Lc[k + e];
-      for (; k < c; ++k) s4[0] += Lr[k] * Lc[k];
-      const double sum = Lr[c] - ((s4[0] + s4[1]) + (s4[2] + s4[3]));
-      if (c == r) {
-        if (!(sum > 1e-13 * (trace / static_cast<double>(N)))) return false;
-        Lr[c] = std::sqrt(sum);
-      } else {
-        Lr[c] = sum / Lc[c];
+  // Factorise `M` (banded Cholesky, L L^T, in place) and solve for the right-hand sides.
+  auto factor_solve = [&](std::vector<double>& M, std::vector<Point>& x) {
+    for (long r = 0; r < Nb; ++r) {
+      double* Lr = M.data() + r * w1 - r + b;  // Lr[c] = L(r, c)
+      for (long c = std::max(0L, r - b); c <= r; ++c) {
+        const double* Lc = M.data() + c * w1 - c + b;
+        // Four partial sums: the dot product vectorises (fixed order: the same bits each run).
+        double s4[4] = {0, 0, 0, 0};
+        long k = std::max(0L, r - b);
+        for (; k + 4 <= c; k += 4)
+          for (int e = 0; e < 4; ++e) s4[e] += Lr[k + e] * Lc[k + e];
+        for (; k < c; ++k) s4[0] += Lr[k] * Lc[k];
+        const double sum = Lr[c] - ((s4[0] + s4[1]) + (s4[2] + s4[3]));
+        if (c == r) {
+          if (!(sum > 1e-13 * (trace / static_cast<double>(N)))) return false;
+          Lr[c] = std::sqrt(sum);
+        } else {
+          Lr[c] = sum / Lc[c];
+        }
       }
     }
-  }
-  std::vector<Point> x(N);
-  for (std::size_t I = 0; I < N; ++I)
-    x[static_cast<std::size_t>(pos(static_cast<int>(I / nv), static_cast<int>(I % nv)))] = rhs[I];
-  for (long r = 0; r < Nb; ++r) {
-    const double* Lr = L.data() + r * w1 - r + b;
-    Point sum = x[r];
-    for (long k = std::max(0L, r - b); k < r; ++k) sum -= Lr[k] * x[k];
-    x[r] = sum / Lr[r];
-  }
-  for (long r = Nb - 1; r >= 0; --r) {
-    const double* Lr = L.data() + r * w1 - r + b;
-    x[r] /= Lr[r];
-    for (long k = std::max(0L, r - b); k < r; ++k) x[k] -= Lr[k] * x[r];
+    x.resize(N);
+    for (std::size_t I = 0; I < N; ++I)
+      x[static_cast<std::size_t>(pos(static_cast<int>(I / nv), static_cast<int>(I % nv)))] = rhs[I];
+    for (long r = 0; r < Nb; ++r) {
+      const double* Lr = M.data() + r * w1 - r + b;
+      Point sum = x[r];
+      for (long k = std::max(0L, r - b); k < r; ++k) sum -= Lr[k] * x[k];
+      x[r] = sum / Lr[r];
+    }
+    for (long r = Nb - 1; r >= 0; --r) {
+      const double* Lr = M.data() + r * w1 - r + b;
+      x[r] /= Lr[r];
+      for (long k = std::max(0L, r - b); k < r; ++k) x[k] -= Lr[k] * x[r];
+    }
+    return true;
+  };
+  std::vector<Point> x;
+  if (calm > 0) {
+    // The calm term: first differences where either control point is weakly held, in the
+    // direction `normal` only where one is given (the other directions solved without it).
+    std::vector<double> C = L;
+    const double mu = calm * trace / static_cast<double>(N), weak = kWeaklyHeld * trace / N;
+    auto held = [&](int i, int l) {
+      return band[(static_cast<std::size_t>(i) * nv + l) * W + centre] >= weak;
+    };
+    auto add_first = [&](int i0, int l0, int i1, int l1) {
+      if (held(i0, l0) && held(i1, l1)) return;
+      long r0 = pos(i0, l0), r1 = pos(i1, l1);
+      if (r1 > r0) std::swap(r0, r1);
+      if (r0 - r1 > b) return;
+      C[static_cast<std::size_t>(r0 * w1 + b)] += mu;
+      C[static_cast<std::size_t>(r1 * w1 + b)] += mu;
+      C[static_cast<std::size_t>(r0 * w1 + r1 - r0 + b)] -= mu;
+    };
+    for (int i = 0; i < nu; ++i)
+      for (int l = 0; l < nv; ++l) {
+        if (cu || i + 1 < nu) add_first(i, l, (i + 1) % nu, l);
+        if (cv || l + 1 < nv) add_first(i, l, i, (l + 1) % nv);
+      }
+    if (!factor_solve(C, x)) return false;
+    if (normal) {
+      std::vector<Point> y;
+      if (!factor_solve(L, y)) return false;
+      for (std::size_t I = 0; I < N; ++I) x[I] = y[I] + (x[I] - y[I]).dot(*normal) * *normal;
+    }
+  } else if (!factor_solve(L, x)) {
+    return false;
   }
   out.degree_u = p;
   out.degree_v = q;
