@@ -248,23 +248,27 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
 
 bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r) {
   const long points = static_cast<long>(fr.centred.total_points());
-  if (static_cast<long>(r.surface.count_u) * r.surface.count_v <= points) return false;
-  if ((o.tolerance.array() == 0).all()) return false;
-  std::string why;
-  if (forced || t_forces_interpolation(fr.centred, o, fr.roundoff, why)) {
-    r.report.stop_reason +=
-        "; more control points than data points: T forces interpolation, "
-        "the data's noise or its jumps between points exceed T";
-    if (!why.empty()) r.report.stop_reason += " (" + why + ")";
+  const bool above = static_cast<long>(r.surface.count_u) * r.surface.count_v > points;
+  const bool folded = o.fold_guard && r.report.fold > kFoldRelative * fr.box.diagonal();
+  if ((!above && !folded) || (o.tolerance.array() == 0).all()) return false;
+  std::string rows_need;
+  if (forced || t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need)) {
+    if (above) {
+      r.report.stop_reason +=
+          "; more control points than data points: T forces interpolation, "
+          "the data's noise or its jumps between points exceed T";
+      if (!rows_need.empty()) r.report.stop_reason += " (" + rows_need + ")";
+    }
     return false;
   }
   progress_phase("below the points", 1);
+  std::string why;
   std::optional<GeometricFit> g = fit_below_points(fr, o, points, why);
   progress_advance(1);
   if (!g) {
-    std::string rows_need;
-    t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need);
-    r.report.stop_reason += "; more control points than data points: " + why + "; " + rows_need;
+    r.report.stop_reason += (above ? "; more control points than data points: "
+                                   : "; it folds, and no unfolded surface below the points: ") +
+                            why + "; " + rows_need;
     return false;
   }
   DeviationCheck c;

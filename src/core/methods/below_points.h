@@ -36,10 +36,10 @@ bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double rou
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
                                              std::string& why);
 
-/// Where `r` (the search's result, centred in `fr`'s frame as the method returns it) has more
-/// control points than the data has points and T is not 0: unless T forces interpolation
-/// (`forced`, or t_forces_interpolation()), fit_below_points()'s surface replaces it (true);
-/// otherwise r's stop reason says which of the two held it above the points.
+/// Where `r` (the search's result: the two stages' surface) has more control points than the
+/// data has points, or folds (with the fold guard on), and T is not 0: unless T forces
+/// interpolation (`forced`, or t_forces_interpolation()), fit_below_points()'s surface
+/// replaces it (true); otherwise r's stop reason says which of the two kept it.
 bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r);
 
 }  // namespace sfit::detail
