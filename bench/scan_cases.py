@@ -169,6 +169,12 @@ def lidar_tile(rng):
     return rows
 
 
+def lidar_corner_strip(rng):
+    """The LiDAR tile's first 80 scan lines: the tile's corner, where the lines are clipped
+    short (2 ... 300 points), with its roofs and trees: about 6,700 points."""
+    return lidar_tile(rng)[:80]
+
+
 def far_offset(rng):
     """The uneven rows, 3.7e6 m east and 5.8e6 m north: UTM-like coordinates."""
     return [r * 100 + np.array([3.7e6, 5.8e6, 120.0]) for r in uneven_rows(rng)]
@@ -183,6 +189,7 @@ CASES = {
     "cornered_sections": (cornered_sections, []),
     "terrain_grid_1e5": (terrain_grid, []),
     "lidar_tile": (lidar_tile, []),
+    "lidar_corner_strip": (lidar_corner_strip, []),
     "far_offset": (far_offset, []),
 }
 
@@ -202,6 +209,7 @@ def main():
     ap.add_argument("--only", default="")
     ap.add_argument("--tol", default="1e-2,1e-3")
     ap.add_argument("--extra", default="", help="more CLI options, e.g. '--method sfit01'")
+    ap.add_argument("--save", default="", help="also write each case's rows to this directory")
     a = ap.parse_args()
     tols = [float(t) for t in a.tol.split(",")]
     print(f"{'case':<20} {'tol':>6} {'points':>8} {'nu x nv':>11} {'cp/pts':>7} {'rule':>12} "
@@ -213,6 +221,8 @@ def main():
             rows = make(np.random.default_rng(7))
             path = os.path.join(tmp, name + ".rows")
             write_rows(path, rows)
+            if a.save:
+                write_rows(os.path.join(a.save, name + ".rows"), rows)
             npts = sum(len(r) for r in rows)
             for tol in tols:
                 rep = os.path.join(tmp, "r.json")

@@ -69,10 +69,14 @@ TEST(RowsTakeAll, FewerControlPointsThanTheHalvesOnJumpingRows) {
               d.report.stop_reason.c_str(), two.surface.count_u, two.surface.count_v);
   ASSERT_NE(d.report.stop_reason.find("the rows took all of T"), std::string::npos)
       << d.report.stop_reason;
-  // Fewer control points than the paper's halves, one per line across, T held at every point
-  // (an independent evaluation), no fold.
+  // Fewer control points than the paper's halves, T held at every point (an independent
+  // evaluation), no fold. The rows at T (95 x 78, one per line across) still have more control
+  // points than the 5,798 points, so the fallback below the points (docs/method.md 7.12)
+  // replaces them (measured: 57 x 39), naming them in its stop reason.
   EXPECT_LT(d.surface.count_u * d.surface.count_v, two.surface.count_u * two.surface.count_v);
-  EXPECT_EQ(static_cast<std::size_t>(d.surface.count_v), rows.size());
+  EXPECT_LT(static_cast<std::size_t>(d.surface.count_u) * d.surface.count_v, rows.total_points());
+  EXPECT_NE(d.report.stop_reason.find("in place of 95 x 78"), std::string::npos)
+      << d.report.stop_reason;
   const Point dev = test::reference_deviation(d, rows);
   for (int k = 0; k < 3; ++k) EXPECT_LE(dev[k], o.tolerance[k]) << k;
   EXPECT_TRUE(d.report.within_tolerance);

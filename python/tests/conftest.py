@@ -72,8 +72,9 @@ def assert_same_surface(surface, j):
 
 
 def deviations(fit):
-    """S(u_j, v_row) - D_j of every point, (P, 3)."""
-    v = np.repeat(fit.v, fit.row_sizes)
+    """S(u_j, v_j) - D_j of every point, (P, 3): v of the point's row, or of the point itself
+    where the surface has one per point (parameters 'geometric')."""
+    v = fit.v_points if len(fit.v_points) else np.repeat(fit.v, fit.row_sizes)
     return fit.surface(fit.u, v) - fit.points
 
 

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "basis.h"
+#include "below_points.h"
 #include "count_floor.h"
 #include "deviation.h"
 #include "few_rows.h"
@@ -335,17 +336,14 @@ FitResult fit_surface_search(const FitSpec& spec) {
                 "than any pair the search could reach"
               : b.report.stop_reason + " (" + std::to_string(floored) +
                     " rules not searched: their rows at T need more control points)";
-    if (!interpolate && !forced &&
-        static_cast<std::size_t>(b.surface.count_u) * b.surface.count_v > rows.total_points())
-      b.report.stop_reason +=
-          "; more control points than data points: no pair with fewer held T at every point, "
-          "as where the data's noise or its jumps between points exceed T";
     if (all_to_rows)
       b.report.stop_reason += "; the rows took all of T and the columns interpolate them (" +
                               std::to_string(base->surface.count_u) + " x " +
                               std::to_string(base->surface.count_v) + " with T/2 each)";
     if (over_budget > 0)
       b.report.stop_reason += " (" + std::to_string(over_budget) + " pairs over the solve budget)";
+    // Never more control points than points unless T forces it (below_points.h).
+    replace_below_points(fr, o, forced, b);
     b.report.seconds = now() - t0;
     return std::move(b);
   }
@@ -379,6 +377,7 @@ FitResult fit_surface_search(const FitSpec& spec) {
       b.report.rules_searched = searched;
       b.report.stop_reason = "sfit01: the search's " + std::to_string(best->nu) + " x " +
                              std::to_string(best->nv) + " folds more between the rows";
+      replace_below_points(fr, o, false, b);
       b.report.seconds = now() - t0;
       return std::move(b);
     }

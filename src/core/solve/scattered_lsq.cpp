@@ -126,7 +126,8 @@ void scattered_add_basis(const ScatteredSpec& spec, int nu, int nv, std::span<co
       band, rhs);
 }
 
-bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) const {
+bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out, double calm,
+                             const Point* normal) const {
   if (nu < min_u() || nv < min_v()) return false;
   const int W = (2 * spec_.degree_u + 1) * (2 * spec_.degree_v + 1);
   const std::size_t N = static_cast<std::size_t>(nu) * nv;
@@ -165,17 +166,26 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) con
       pt = Part{};
     }
   }
-  return scattered_solve(spec_, nu, nv, band, rhs, smoothing, out);
+  return scattered_solve(spec_, nu, nv, band, rhs, smoothing, out, calm, normal);
 }
 
 bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,
-                     const std::vector<Point>& rhs, double smoothing, Surface& out) {
+                     const std::vector<Point>& rhs, double smoothing, Surface& out, double calm,
+                     const Point* normal) {
   const std::size_t N = static_cast<std::size_t>(nu) * nv;
   if (rhs.size() != N || spec.closed_v) return false;  // (the rule is open across)
   ScatteredFactor f;
-  if (!f.factor(spec, nu, nv, band, smoothing)) return false;
+  if (!f.factor(spec, nu, nv, band, smoothing, calm)) return false;
   std::vector<Point> x = rhs;
   f.solve(x);
+  if (calm > 0 && normal) {
+    // The calm term along `normal` only: the other directions from the system without it.
+    ScatteredFactor plain;
+    if (!plain.factor(spec, nu, nv, band, smoothing)) return false;
+    std::vector<Point> y = rhs;
+    plain.solve(y);
+    for (std::size_t I = 0; I < N; ++I) x[I] = y[I] + (x[I] - y[I]).dot(*normal) * *normal;
+  }
   out.degree_u = spec.degree_u;
   out.degree_v = spec.degree_v;
   out.periodic_u = spec.closed_u;
@@ -194,7 +204,7 @@ long ScatteredFactor::pos(std::size_t I) const {
 }
 
 bool ScatteredFactor::factor(const ScatteredSpec& spec, int nu, int nv,
-                             const std::vector<double>& band, double smoothing) {
+                             const std::vector<double>& band, double smoothing, double calm) {
   const int p = spec.degree_u, q = spec.degree_v;
   const bool cu = spec.closed_u, cv = spec.closed_v;
   const int wv = 2 * q + 1, W = (2 * p + 1) * wv;
@@ -262,6 +272,27 @@ bool ScatteredFactor::factor(const ScatteredSpec& spec, int nu, int nv,
     for (int i = 0; i < nu; ++i)
       for (int l = cv ? 0 : 1; l < (cv ? nv : nv - 1); ++l)
         add_difference(at(i, (l - 1 + nv) % nv), at(i, l), at(i, (l + 1) % nv));
+  }
+  if (calm > 0) {
+    // The calm term: first differences where either control point is weakly held.
+    const double mu = calm * trace / static_cast<double>(N), weak = kWeaklyHeld * trace / N;
+    auto held = [&](int i, int l) {
+      return band[(static_cast<std::size_t>(i) * nv + l) * W + centre] >= weak;
+    };
+    auto add_first = [&](int i0, int l0, int i1, int l1) {
+      if (held(i0, l0) && held(i1, l1)) return;
+      long r0 = at(i0, l0), r1 = at(i1, l1);
+      if (r1 > r0) std::swap(r0, r1);
+      if (r0 - r1 > b) return;
+      L[static_cast<std::size_t>(r0 * w1 + b)] += mu;
+      L[static_cast<std::size_t>(r1 * w1 + b)] += mu;
+      L[static_cast<std::size_t>(r0 * w1 + r1 - r0 + b)] -= mu;
+    };
+    for (int i = 0; i < nu; ++i)
+      for (int l = 0; l < nv; ++l) {
+        if (cu || i + 1 < nu) add_first(i, l, (i + 1) % nu, l);
+        if (cv || l + 1 < nv) add_first(i, l, i, (l + 1) % nv);
+      }
   }
   // Banded Cholesky, L L^T, in place.
   for (long r = 0; r < Nb; ++r) {

@@ -32,6 +32,10 @@ namespace sfit::detail {
 /// The smoothness weight relative to the mean diagonal of the data term.
 inline constexpr double kSmoothing = 1e-4;
 
+/// A control point whose data term (its diagonal) is below this fraction of the mean diagonal
+/// is weakly held by the data: the calm term (solve()'s `calm`) ties it to its neighbours.
+inline constexpr double kWeaklyHeld = 0.05;
+
 struct ScatteredSpec {
   int degree_u = 3, degree_v = 3;
   bool closed_u = false, closed_v = false;
@@ -56,7 +60,8 @@ void scattered_add_basis(const ScatteredSpec& spec, int nu, int nv, std::span<co
 /// The surface of a summed data term (scattered_add()) plus the smoothness term of weight
 /// `smoothing` (relative), as ScatteredProblem::solve().
 bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,
-                     const std::vector<Point>& rhs, double smoothing, Surface& out);
+                     const std::vector<Point>& rhs, double smoothing, Surface& out, double calm = 0,
+                     const Point* normal = nullptr);
 
 /// scattered_solve()'s system (the summed data term plus the smoothness term) factorised once,
 /// then solved for any number of right-hand sides: the banded Cholesky factor in the ordering
@@ -65,8 +70,9 @@ class ScatteredFactor {
  public:
   /// false where the system is singular (a pivot at round-off), the band store does not match
   /// (nu, nv) or both directions are closed.
+  /// `calm` > 0: with the calm term of ScatteredProblem::solve() on every axis.
   bool factor(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,
-              double smoothing);
+              double smoothing, double calm = 0);
   /// x <- A^-1 x in place, x[I] for unknown I = i nv + l (the Surface's order).
   void solve(std::vector<Point>& x) const;
   void solve(std::vector<double>& x) const;
@@ -99,7 +105,16 @@ class ScatteredProblem {
   std::vector<double> v_at(int nv) const;
   /// The surface at (nu, nv) with smoothness weight `smoothing` (relative, see above) into
   /// `out` (centred); false where the factorisation failed or the result is not finite.
-  bool solve(int nu, int nv, double smoothing, Surface& out) const;
+  /// `calm` > 0 (relative, as `smoothing`) adds the calm term: the squared first differences
+  /// between neighbouring control points (along u and along v) where either is weakly held by
+  /// the data (kWeaklyHeld), so that the net is flat, not continued linearly, across the parts
+  /// of the domain without data: a steep edge at the data's border (a roof, a tree) is not
+  /// extrapolated across an empty corner. 0 (the search): the same bits as without it.
+  /// `normal` (unit): the calm term acts on the control points' component along it only (a
+  /// sheet's height over its base plane; the net stays continued linearly in the plane, so
+  /// it does not fold there), at the cost of a second factorisation.
+  bool solve(int nu, int nv, double smoothing, Surface& out, double calm = 0,
+             const Point* normal = nullptr) const;
   /// The flops of solve()'s factorisation at (nu, nv): unknowns x band^2 / 2.
   double cost(int nu, int nv) const;
 

@@ -1,0 +1,291 @@
+// The surface search's last resort below the points (below_points.h).
+#include "below_points.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+
+#include "fit_frame.h"
+#include "fit_monitor.h"
+#include "geometric_params.h"
+#include "parallel.h"
+#include "scattered_lsq.h"
+#include "sfit/curve_fit.h"
+#include "sfit/fold_check.h"
+
+namespace sfit::detail {
+
+namespace {
+
+// Share of the points the rows alone must need for T to force (near) interpolation.
+constexpr double kNearInterpolation = 0.9;
+// Bisection steps on the product (each halves the interval: 2^-8 of the points at the end).
+constexpr int kBisections = 8;
+// Where the largest product fails, so many smaller ones (each 0.8 of the last) are tried
+// before giving up: a guard (the fold, the calm) can fail at one pair and pass at a smaller.
+// Only where the top held T at every point but failed the guard or folded.
+constexpr int kTopTries = 3;
+// The parameters are corrected where the worst point misses T by at most this factor.
+constexpr double kCorrectReach = 3;
+
+struct Tried {
+  bool holds = false;  // T at every point, the guard and no fold
+  double ratio = HUGE_VAL;
+  Surface s;
+  double smoothing = 0;
+  std::vector<double> fu, fv;  // the points' fractions the surface was made at
+  int corrections = 0;
+};
+
+// One solve at the problem's fractions: the smoothness as the geometric search's, and lowered
+// where T was missed; every point judged (the exact worst ratio). `holds`: T at every point.
+Tried solve_once(const ScatteredProblem& sp, const Frame& fr, int nu, int nv,
+                 const std::optional<Point>& normal) {
+  Tried best;
+  const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
+  for (double w = kSmoothing; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {
+    Surface s;
+    if (!sp.solve(nu, nv, w, s, normal ? kCalm : 0.0, normal ? &*normal : nullptr)) break;
+    DeviationCheck c;
+    const PairVerdict verdict = fr.judge(s, u, v, &c, nullptr, false);
+    if (verdict.ratio < best.ratio) best = Tried{verdict.holds, verdict.ratio, std::move(s), w};
+    if (verdict.holds) break;
+  }
+  return best;
+}
+
+// One pair: from the base surface's fractions, corrected by projection onto the fit (as the
+// geometric search does) while the worst deviation falls and T is missed; then the rule's
+// guard (stays_near_where_covered()) and no fold.
+Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<double>& fu0,
+              const std::vector<double>& fv0, int nu, int nv, const std::optional<Point>& normal) {
+  Tried best;
+  std::vector<double> fu = fu0, fv = fv0;
+  for (int round = 0; round <= kCorrectionRounds; ++round) {
+    const ScatteredProblem sp(fr.centred, spec, std::move(fu), std::move(fv));
+    Tried t = solve_once(sp, fr, nu, nv, normal);
+    if (!(t.ratio < best.ratio)) break;
+    t.fu = sp.fractions_u();
+    t.fv = sp.fractions_v();
+    t.corrections = round;
+    best = std::move(t);
+    // A far miss is not corrected (no round was seen to bring it within T; each costs a solve).
+    if (best.holds || round == kCorrectionRounds || best.ratio > kCorrectReach) break;
+    std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
+    project_parameters(best.s, fr.centred, u, v, kNewtonSteps, fr.threads);
+    to_fractions(best.s, u, v, fu, fv);
+  }
+  if (best.holds) {
+    const ScatteredProblem sp(fr.centred, spec, best.fu, best.fv);
+    const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
+    auto guarded = [&](const Surface& s) {
+      return stays_near_where_covered(s, u, v, fr.centred_box) &&
+             geometric_fold(s) <= kFoldRelative * fr.box.diagonal();
+    };
+    best.holds = guarded(best.s);
+    // Where the height alone was calmed and a guard failed: the calm term on every axis.
+    if (!best.holds && normal) {
+      Surface s;
+      if (sp.solve(nu, nv, best.smoothing, s, kCalm)) {
+        const PairVerdict verdict = fr.judge(s, u, v, nullptr, nullptr, false);
+        if (verdict.holds && guarded(s)) {
+          best.s = std::move(s);
+          best.ratio = verdict.ratio;
+          best.holds = true;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
+                            std::string& why) {
+  const std::size_t M = centred.size(), picks = std::min<std::size_t>(8, M);
+  if (picks == 0) return false;
+  Point bound;
+  for (int a = 0; a < 3; ++a) bound[a] = o.tolerance[a] > 0 ? o.tolerance[a] : roundoff;
+  std::vector<long> need(picks, 0), have(picks, 0);
+  parallel_for(picks, threads_for(centred, o.threads), [&](std::size_t k) {
+    const auto row = centred[k * (M - 1) / std::max<std::size_t>(1, picks - 1)];
+    have[k] = static_cast<long>(row.size());
+    if (row.size() < static_cast<std::size_t>(o.degree_u) + 2) {
+      need[k] = have[k];  // a row this short is interpolated by any count
+      return;
+    }
+    CurveFitOptions c;
+    c.degree = o.degree_u;
+    c.periodic = o.closed_u;
+    c.search = CountSearch::kFast;
+    c.bound = bound;
+    const std::vector<double> positions =
+        normalized_positions(row, Parametrization::kChord, o.closed_u);
+    c.positions = positions;
+    const CurveFit f = fit_curve(row, c);
+    need[k] = f.curve.control.empty() ? have[k] : std::min<long>(f.curve.count(), have[k]);
+  });
+  long a = 0, b = 0;
+  for (std::size_t k = 0; k < picks; ++k) {
+    a += need[k];
+    b += have[k];
+  }
+  why = "the rows fitted alone at T need " + std::to_string(a) + " of their " + std::to_string(b) +
+        " points";
+  return static_cast<double>(a) >= kNearInterpolation * static_cast<double>(b);
+}
+
+std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
+                                             std::string& why) {
+  std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
+  if (!f) {
+    why = "no base surface for the geometric rule";
+    return std::nullopt;
+  }
+  const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
+  const ScatteredProblem sp(fr.centred, spec, f->u, f->v);
+  // An open sheet's height direction: the normal of the points' best plane (the calm term
+  // acts on the height only). Closed rows have none: their net is continued linearly.
+  std::optional<Point> normal;
+  if (!o.closed_u && !o.closed_v) {
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    Point mean = Point::Zero();
+    for (const Point& p : fr.centred.points()) mean += p;
+    mean /= static_cast<double>(fr.centred.total_points());
+    for (const Point& p : fr.centred.points()) cov += (p - mean) * (p - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    if (eig.info() == Eigen::Success) normal = eig.eigenvectors().col(0).normalized();
+  }
+  // The ratio nu / nv: the data's resolution along and across (its longest row's points over
+  // its rows), then square.
+  std::size_t longest = 0;
+  for (std::size_t j = 0; j < fr.centred.size(); ++j)
+    longest = std::max(longest, fr.centred[j].size());
+  const double a0 = std::clamp(static_cast<double>(longest) / fr.centred.size(), 1.0 / 16, 16.0);
+  std::vector<double> aspects{a0};
+  if (std::abs(a0 - 1) > 0.25) aspects.push_back(1.0);
+  const long least = static_cast<long>(sp.min_u()) * sp.min_v();
+  auto pair_of = [&](long product, double a) {
+    int nu = std::max(sp.min_u(), static_cast<int>(std::lround(std::sqrt(product * a))));
+    int nv = std::max(sp.min_v(), static_cast<int>(product / nu));
+    if (static_cast<long>(nu) * nv > product)
+      nu = std::max(sp.min_u(), static_cast<int>(product / nv));
+    return std::pair{nu, nv};
+  };
+  long tried = 0;
+  bool guard_failed = false;             // a pair held T at every point but failed a guard
+  std::set<std::pair<int, int>> failed;  // pairs tried (a pair that held ends the call)
+  // The surface at a product: the first ratio whose pair holds.
+  auto at = [&](long product) -> std::optional<std::pair<std::pair<int, int>, Tried>> {
+    for (double a : aspects) {
+      const auto [nu, nv] = pair_of(product, a);
+      if (static_cast<long>(nu) * nv >= points || sp.cost(nu, nv) > kBelowPointsCost) continue;
+      if (!failed.insert({nu, nv}).second) continue;  // tried before, and it failed
+      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal);
+      ++tried;
+      if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, t.holds);
+      if (t.holds) return std::pair{std::pair{nu, nv}, std::move(t)};
+      guard_failed = guard_failed || t.ratio <= 1;
+    }
+    return std::nullopt;
+  };
+  // The largest affordable product below the points.
+  long hi = points - 1;
+  while (hi > least) {
+    const auto [nu, nv] = pair_of(hi, a0);
+    if (sp.cost(nu, nv) <= kBelowPointsCost) break;
+    hi = static_cast<long>(0.8 * static_cast<double>(hi));
+  }
+  if (hi <= least) {
+    why = "no pair below the points is affordable";
+    return std::nullopt;
+  }
+  const long top = hi;
+  auto best = at(hi);
+  for (int k = 1; k < kTopTries && !best && guard_failed; ++k) {
+    hi = static_cast<long>(0.8 * static_cast<double>(hi));
+    if (hi <= least) break;
+    best = at(hi);
+  }
+  if (!best) {
+    why = "no surface below the points held T with the calm term (" + std::to_string(tried) +
+          " pairs tried up to " + std::to_string(top) + " control points" +
+          (top < points - 1 ? ", the largest affordable" : "") + ")";
+    return std::nullopt;
+  }
+  long lo = least - 1;
+  for (int k = 0; k < kBisections && hi - lo > 1; ++k) {
+    const long mid = lo + (hi - lo) / 2;
+    if (auto m = at(mid)) {
+      hi = mid;
+      best = std::move(m);
+    } else {
+      lo = mid;
+    }
+  }
+  const auto [nu, nv] = best->first;
+  GeometricFit g;
+  g.surface = std::move(best->second.s);
+  const ScatteredProblem won(fr.centred, spec, std::move(best->second.fu),
+                             std::move(best->second.fv));
+  g.u = won.u_at(nu);
+  g.v = won.v_at(nv);
+  g.corrections = best->second.corrections;
+  g.smoothing = best->second.smoothing;
+  g.tried = tried;
+  const std::vector<char> cells = covered_spans(g.surface, g.u, g.v);
+  const long covered = std::count(cells.begin(), cells.end(), 1);
+  g.stop = "below the points: the geometric rule with a calm net where the data is not (data in " +
+           std::to_string(covered) + " of the " + std::to_string(cells.size()) +
+           " knot spans), nu x nv by bisection on the product (" + std::to_string(tried) +
+           " pairs)";
+  return g;
+}
+
+bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r) {
+  const long points = static_cast<long>(fr.centred.total_points());
+  const bool above = static_cast<long>(r.surface.count_u) * r.surface.count_v > points;
+  const bool folded = o.fold_guard && r.report.fold > kFoldRelative * fr.box.diagonal();
+  if ((!above && !folded) || (o.tolerance.array() == 0).all()) return false;
+  std::string rows_need;
+  if (forced || t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need)) {
+    if (above) {
+      r.report.stop_reason +=
+          "; more control points than data points: T forces interpolation, "
+          "the data's noise or its jumps between points exceed T";
+      if (!rows_need.empty()) r.report.stop_reason += " (" + rows_need + ")";
+    }
+    return false;
+  }
+  progress_phase("below the points", 1);
+  std::string why;
+  std::optional<GeometricFit> g = fit_below_points(fr, o, points, why);
+  progress_advance(1);
+  if (!g) {
+    r.report.stop_reason += (above ? "; more control points than data points: "
+                                   : "; it folds, and no unfolded surface below the points: ") +
+                            why + "; " + rows_need;
+    return false;
+  }
+  DeviationCheck c;
+  fr.judge(g->surface, g->u, g->v, &c, nullptr, false);
+  const long tried = g->tried;
+  std::string stop = g->stop + "; in place of " + std::to_string(r.surface.count_u) + " x " +
+                     std::to_string(r.surface.count_v) + " (" + r.report.stop_reason + ")";
+  FitResult out = assemble_geometric(fr, std::move(*g), c, o);
+  FitReport& rep = out.report;
+  rep.pairs_tried = r.report.pairs_tried + tried;
+  rep.rules_searched = r.report.rules_searched;
+  rep.stop_reason = std::move(stop);
+  rep.row_counts = std::move(r.report.row_counts);
+  rep.column_counts = std::move(r.report.column_counts);
+  rep.solves = r.report.solves;
+  r = std::move(out);
+  return true;
+}
+
+}  // namespace sfit::detail

@@ -1,0 +1,45 @@
+// The surface search's last resort where its best surface has more control points than the data
+// has points (docs/method.md 7.12): the geometric rule's scattered least squares with a calm
+// term over the parts of the domain without data, at products nu x nv below the points,
+// chosen by a bisection on the product; and the test that says when T itself forces
+// (near) interpolation, so that no surface below the points can hold. Private to the surface
+// method.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "geometric_search.h"
+#include "search_frame.h"
+
+namespace sfit::detail {
+
+/// The calm term's weight (relative, ScatteredProblem::solve()).
+inline constexpr double kCalm = 1e-2;
+
+/// The most flops of one factorisation the fallback solves (about half a second); larger pairs
+/// are not tried.
+inline constexpr double kBelowPointsCost = 1e9;
+
+/// Whether T forces (near) interpolation: rows spread over the data (up to 8), each fitted
+/// alone as a curve at T (chord-length positions, count_floor.h's fit), need together at
+/// least 90 % of their points. `why` gets the numbers ("the rows fitted alone at T need
+/// a of their b points").
+bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
+                            std::string& why);
+
+/// A surface of the geometric rule with fewer control points than `points` (the data's): nu x
+/// nv by a bisection on the product (the ratio nu / nv from the data: the longest row's points
+/// over the rows, and 1), each pair solved with the calm term, judged at every point (T per
+/// axis), by the geometric rule's guard (stays_near_where_covered()) and unfolded
+/// (geometric_fold()). nullopt where none held; `why` says what was tried.
+std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
+                                             std::string& why);
+
+/// Where `r` (the search's result: the two stages' surface) has more control points than the
+/// data has points, or folds (with the fold guard on), and T is not 0: unless T forces
+/// interpolation (`forced`, or t_forces_interpolation()), fit_below_points()'s surface
+/// replaces it (true); otherwise r's stop reason says which of the two kept it.
+bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r);
+
+}  // namespace sfit::detail
