@@ -3,11 +3,13 @@
 // rows as bench/method_ratio.py states them), no process start-up, no reading or writing.
 // Speed is measured here, never asserted in tests.
 //
-//   build/bench/bench_small_fits [--reps N] [--threads T] [--only NAME] [--method surface|sfit01]
+//   build/bench/bench_small_fits [--reps N] [--threads T] [--only NAME] [--tol 1e-3]
+//                          [--method surface|sfit01]
 //
 // Prints a Markdown table: counts of both methods, the median wall time of N fits (default 5,
 // the two methods alternating) and the ratio default / sfit01. --only: the sets whose name
-// contains NAME; --method: run that method alone (for perf record), no table.
+// contains NAME; --tol: that relative
+// tolerance alone; --method: run that method alone (for perf record), no table.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -38,6 +40,7 @@ double seconds_of(const sfit::Rows& rows, const sfit::FitOptions& o, sfit::FitRe
 int main(int argc, char** argv) {
   int reps = 5, threads = 1;
   std::string only, method;
+  double tol = 0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--reps") {
@@ -46,6 +49,8 @@ int main(int argc, char** argv) {
       threads = std::atoi(argv[i + 1]);
     } else if (a == "--only") {
       only = argv[i + 1];
+    } else if (a == "--tol") {
+      tol = std::atof(argv[i + 1]);
     } else if (a == "--method") {
       method = argv[i + 1];
     } else {
@@ -74,6 +79,7 @@ int main(int argc, char** argv) {
   for (const std::string& name : names) {
     const sfit::Rows rows = sfit::io::read_rows(std::string(SFIT_EXAMPLES_DIR) + "/" + name).rows;
     for (const double rel : {1e-2, 1e-3, 1e-4}) {
+      if (tol > 0 && rel != tol) continue;
       sfit::FitOptions o;
       o.tolerance = sfit::relative_tolerance(rows, rel);
       o.closed_u = closed_u.count(name) > 0;
