@@ -119,6 +119,12 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out) con
   // Memory: a store per block would be blocks x N x W; merge as we go in fixed groups.
   std::vector<double> band(N * W, 0.0);
   std::vector<Point> rhs(N, Point::Zero());
+  if (blocks == 1) {
+    // One block sums straight into the store: the same bits as 0 + its own store (a sum
+    // started at +0 is never -0), without a second zeroed store of N x W per pair.
+    scattered_add(spec_, nu, nv, pts, wts, fu_, fv_, band, rhs);
+    return scattered_solve(spec_, nu, nv, band, rhs, smoothing, out);
+  }
   for (std::size_t g = 0; g < blocks; g += static_cast<std::size_t>(threads)) {
     const std::size_t m = std::min<std::size_t>(threads, blocks - g);
     parallel_for(m, threads, [&](std::size_t i) { run_block(g + i); });
