@@ -120,9 +120,13 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
                 DeviationCheck* out = nullptr, double start = kSmoothing) {
   Attempt a;
   const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
+  if (nu < sp.min_u() || nv < sp.min_v()) return a;
+  std::vector<double> band;  // the data term, summed once for every weight tried
+  std::vector<Point> rhs;
+  sp.assemble(nu, nv, band, rhs);
   for (double w = start; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {
     Surface s;
-    if (!sp.solve(nu, nv, w, s)) return a;
+    if (!scattered_solve(sp.spec(), nu, nv, band, rhs, w, s)) return a;
     PairVerdict verdict = fr.judge(s, u, v, out, sample, false);
     if (verdict.holds && !stays_near_where_covered(s, u, v, fr.centred_box)) verdict.holds = false;
     a = {verdict, std::move(s), w};
