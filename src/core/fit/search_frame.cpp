@@ -170,14 +170,36 @@ TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads,
 
 // The surface at one pair by one norm (centred), or nullopt where none was made.
 std::optional<Surface> solve_pair(TensorProblem& prob, FitNorm norm, int nu, int nv,
-                                  const Point& tolerance) {
+                                  const Point& tolerance, const Surface* ls) {
   Surface s;
-  if (!prob.solve(nu, nv, s)) return std::nullopt;
+  if (ls) {
+    s = *ls;
+  } else if (!prob.solve(nu, nv, s)) {
+    return std::nullopt;
+  }
   if (norm == FitNorm::kLinf) {
     if (!minimax_refine(prob.rows(), prob.u_at(nu), prob.v_at(nv), tolerance, s))
       return std::nullopt;
   }
   return s;
+}
+
+const Surface* KeptSurfaces::ls(int nu, int nv) const {
+  auto it = ls_.find({nu, nv});
+  return it == ls_.end() ? nullptr : &it->second;
+}
+
+void KeptSurfaces::keep_held(const Key& k, const Surface& s) {
+  const long size = static_cast<long>(k.nu) * k.nv;
+  if (!held_.empty() && size > held_size_) return;
+  if (held_.empty() || size < held_size_) held_.clear();
+  held_size_ = size;
+  held_[k] = s;
+}
+
+const Surface* KeptSurfaces::held(const Key& k) const {
+  auto it = held_.find(k);
+  return it == held_.end() ? nullptr : &it->second;
 }
 
 FitResult assemble(const Frame& fr, Surface s, std::vector<double> u, std::vector<double> v,

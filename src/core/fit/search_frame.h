@@ -2,6 +2,8 @@
 // rows centred on their box, the round-off, and the verdict on a candidate surface. Private.
 #pragma once
 
+#include <compare>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -68,9 +70,38 @@ std::vector<Parametrization> rules_of(Parametrization p);
 /// The solver's spec for a fit's options at one rule.
 TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads,
                    std::span<const double> seam_offsets);
-/// The surface at one pair by one norm (centred), or nullopt where none was made.
+/// The surface at one pair by one norm (centred), or nullopt where none was made. `ls`: the
+/// problem's least-squares surface at that pair where the caller has it (kLinf then refines a
+/// copy of it: the same bits as solving it again).
 std::optional<Surface> solve_pair(TensorProblem& prob, FitNorm norm, int nu, int nv,
-                                  const Point& tolerance);
+                                  const Point& tolerance, const Surface* ls = nullptr);
+
+/// Surfaces a search keeps so that no pair is solved twice (each is deterministic, so a kept
+/// one has the bits a second solve would give): the least-squares surfaces that minimax may
+/// refine next (small: minimax_affordable()), and the surfaces that held with the fewest
+/// control points so far (ties: all of them), which the result takes instead of remaking.
+class KeptSurfaces {
+ public:
+  struct Key {
+    Parametrization rule;
+    FitNorm norm;
+    int nu, nv;
+    auto operator<=>(const Key&) const = default;
+  };
+  /// A least-squares surface (unraised, as TensorProblem::solve() made it) of the current rule.
+  void keep_ls(int nu, int nv, const Surface& s) { ls_[{nu, nv}] = s; }
+  const Surface* ls(int nu, int nv) const;
+  /// The next rule: its least-squares surfaces are of another problem.
+  void next_rule() { ls_.clear(); }
+  /// A surface that held: kept where it has no more control points than every one kept.
+  void keep_held(const Key& k, const Surface& s);
+  const Surface* held(const Key& k) const;
+
+ private:
+  std::map<std::pair<int, int>, Surface> ls_;
+  std::map<Key, Surface> held_;
+  long held_size_ = 0;
+};
 /// The result of a surface (centred) with its check, in the frame's coordinates and report
 /// (frame_result() of fit_frame.h) and the shape measures; method kSurface.
 FitResult assemble(const Frame& fr, Surface s, std::vector<double> u, std::vector<double> v,

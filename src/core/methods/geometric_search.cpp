@@ -120,9 +120,13 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
                 DeviationCheck* out = nullptr, double start = kSmoothing) {
   Attempt a;
   const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
+  if (nu < sp.min_u() || nv < sp.min_v()) return a;
+  std::vector<double> band;  // the data term, summed once for every weight tried
+  std::vector<Point> rhs;
+  sp.assemble(nu, nv, band, rhs);
   for (double w = start; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {
     Surface s;
-    if (!sp.solve(nu, nv, w, s)) return a;
+    if (!scattered_solve(sp.spec(), nu, nv, band, rhs, w, s)) return a;
     PairVerdict verdict = fr.judge(s, u, v, out, sample, false);
     if (verdict.holds && !stays_near_where_covered(s, u, v, fr.centred_box)) verdict.holds = false;
     a = {verdict, std::move(s), w};
@@ -135,8 +139,19 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
   return a;
 }
 
-// The surfaces that held, by pair (the final one is not solved again).
+// The surfaces that held with the fewest control points (ties: all), by pair: the pair a
+// search ends at is not solved again (a pair that held with more is of no further use).
 using Kept = std::map<std::pair<int, int>, Attempt>;
+void keep(Kept& kept, int nu, int nv, Attempt a) {
+  const long n = static_cast<long>(nu) * nv;
+  if (!kept.empty()) {
+    const auto& [k, _] = *kept.begin();
+    const long least = static_cast<long>(k.first) * k.second;
+    if (n > least) return;
+    if (n < least) kept.clear();
+  }
+  kept[{nu, nv}] = std::move(a);
+}
 
 PairOracle oracle_for(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, bool report,
                       Kept* kept = nullptr) {
@@ -146,7 +161,7 @@ PairOracle oracle_for(const ScatteredProblem& sp, const Frame& fr, const Rows* s
       return PairVerdict{false, HUGE_VAL};
     Attempt a = attempt(sp, fr, sample, nu, nv);
     const PairVerdict v = a.verdict;
-    if (kept && v.holds) (*kept)[{nu, nv}] = std::move(a);
+    if (kept && v.holds) keep(*kept, nu, nv, std::move(a));
     if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, report && v.holds);
     return v;
   });
@@ -215,7 +230,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // Coarse: the pair on the sample (or all points), at the base surface's parameters.
   auto sp = std::make_unique<ScatteredProblem>(srows, spec, fu, fv);
   PairRange range = range_for(*sp, srows);
-  PairOracle first = oracle_for(*sp, fr, sptr, !sample);
+  Kept kept_sp;  // of the problem *sp
+  PairOracle first = oracle_for(*sp, fr, sptr, !sample, &kept_sp);
   // A first bound from the diagonal (k, k), k growing by 1.5: a few small solves, after which
   // the pair search never tries a pair with more control points than it.
   long start = bound;
@@ -235,14 +251,16 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // Correction: project the points onto the fit, refit, descend; while the count falls.
   int rounds = 0;
   for (int round = 0; round < corrections; ++round) {
-    const Attempt at = attempt(*sp, fr, sptr, nu, nv);
+    const auto held = kept_sp.find({nu, nv});
+    const Attempt at = held != kept_sp.end() ? held->second : attempt(*sp, fr, sptr, nu, nv);
     if (!at.verdict.holds) break;
     std::vector<double> u = sp->u_at(nu), v = sp->v_at(nv);
     project_parameters(at.s, srows, u, v, kNewtonSteps, fr.threads);
     std::vector<double> nfu, nfv;
     to_fractions(at.s, u, v, nfu, nfv);
     auto next = std::make_unique<ScatteredProblem>(srows, spec, nfu, nfv);
-    PairOracle o2 = oracle_for(*next, fr, sptr, !sample);
+    Kept kept_next;
+    PairOracle o2 = oracle_for(*next, fr, sptr, !sample, &kept_next);
     if (!o2(nu, nv).holds) {
       tried += o2.tried();
       break;
@@ -253,6 +271,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
     nu = a;
     nv = b;
     sp = std::move(next);
+    kept_sp = std::move(kept_next);
     fu = std::move(nfu);
     fv = std::move(nfv);
     ++rounds;
@@ -320,6 +339,9 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
            "th point of each row, verified on all)";
   }
   tried += all.tried();
+  // Without a sample `full` is the problem *sp (the same points and fractions): its kept
+  // surface is this pair's.
+  if (!sample) kept = std::move(kept_sp);
   auto it = kept.find({nu, nv});
   const Attempt at = it != kept.end() ? std::move(it->second) : attempt(full, fr, nullptr, nu, nv);
   if (!at.verdict.holds) return std::nullopt;

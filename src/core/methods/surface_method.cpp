@@ -121,6 +121,8 @@ FitResult fit_surface_search(const FitSpec& spec) {
   std::size_t rules_done = 0;
   std::vector<Parametrization> searched;
   std::optional<GeometricFit> geo;  // the kGeometric rule's surface (geometric_search.h)
+  KeptSurfaces kept;                // no pair solved twice (search_frame.h)
+  const bool linf_may = o.norm != FitNorm::kL2 && !weights_matter(rows);
   // Each rule's floor, made once (the geometric rule reads the chord rule's): its rows first
   // (row_floor_of(), nv at its least), its columns only where the rows do not decide (noise
   // near T on a grid: the rows' counts alone rule every row rule out).
@@ -202,6 +204,7 @@ FitResult fit_surface_search(const FitSpec& spec) {
       continue;
     }
     searched.push_back(rule);
+    kept.next_rule();
     TensorProblem prob(fr.centred, spec_of(os, rule, fr.threads, seam_offsets));
     const PairRange range{prob.min_u(), prob.max_u(), few.min_v(prob.min_v()),
                           few.max_v(prob.max_v()), [&](int nu, int nv) {
@@ -216,9 +219,17 @@ FitResult fit_surface_search(const FitSpec& spec) {
         ++over_budget;
         return PairVerdict{false, HUGE_VAL};
       }
-      auto s = few.raise(solve_pair(prob, FitNorm::kL2, nu, few.nv(nv), o.tolerance));
+      std::optional<Surface> ls = solve_pair(prob, FitNorm::kL2, nu, few.nv(nv), o.tolerance);
+      const bool refinable =
+          ls && linf_may && minimax_affordable(fr.centred.total_points(), nu, nv);
+      auto s = few.raise(refinable ? ls : std::move(ls));
       const PairVerdict verdict =
           s ? fr.judge(*s, prob.u_at(nu), prob.v_at(few.nv(nv))) : PairVerdict{false, HUGE_VAL};
+      if (verdict.holds) {
+        kept.keep_held({rule, FitNorm::kL2, nu, nv}, *s);
+      } else if (refinable && verdict.ratio <= kLinfReach) {
+        kept.keep_ls(nu, nv, *ls);
+      }
       if (monitor) monitor->pair_tried(nu, nv, verdict.holds);
       return verdict;
     });
@@ -236,9 +247,11 @@ FitResult fit_surface_search(const FitSpec& spec) {
       // Minimax from the least-squares choice (or the two-stage pair) downwards, at pairs
       // where least squares missed T by a little (kAuto) or at all (kLinf).
       PairOracle linf([&](int nu, int nv) {
-        auto s = few.raise(solve_pair(prob, FitNorm::kLinf, nu, few.nv(nv), o.tolerance));
+        auto s = few.raise(
+            solve_pair(prob, FitNorm::kLinf, nu, few.nv(nv), o.tolerance, kept.ls(nu, nv)));
         const PairVerdict verdict =
             s ? fr.judge(*s, prob.u_at(nu), prob.v_at(few.nv(nv))) : PairVerdict{false, HUGE_VAL};
+        if (verdict.holds) kept.keep_held({rule, FitNorm::kLinf, nu, nv}, *s);
         if (monitor) monitor->pair_tried(nu, nv, verdict.holds);
         return verdict;
       });
@@ -355,9 +368,13 @@ FitResult fit_surface_search(const FitSpec& spec) {
     progress_advance(1);
     out = assemble_geometric(fr, std::move(*geo), c, o);
   } else {
-    // Remake the winner (deterministic: the same bits as when it was judged) and check it.
+    // The winner as the search kept it, else remade (deterministic: the same bits as when it
+    // was judged), and checked.
     TensorProblem prob(fr.centred, spec_of(os, best->rule, fr.threads, seam_offsets));
-    Surface s = *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
+    const Surface* held = kept.held({best->rule, best->norm, best->nu, best->nv});
+    Surface s =
+        held ? *held
+             : *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
     std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(few.nv(best->nv));
     DeviationCheck c;
     progress_phase("check", 1);

@@ -129,6 +129,14 @@ void scattered_add_basis(const ScatteredSpec& spec, int nu, int nv, std::span<co
 bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out, double calm,
                              const Point* normal) const {
   if (nu < min_u() || nv < min_v()) return false;
+  std::vector<double> band;
+  std::vector<Point> rhs;
+  assemble(nu, nv, band, rhs);
+  return scattered_solve(spec_, nu, nv, band, rhs, smoothing, out, calm, normal);
+}
+
+void ScatteredProblem::assemble(int nu, int nv, std::vector<double>& band,
+                                std::vector<Point>& rhs) const {
   const int W = (2 * spec_.degree_u + 1) * (2 * spec_.degree_v + 1);
   const std::size_t N = static_cast<std::size_t>(nu) * nv;
   const std::vector<Point>& pts = rows_.points();
@@ -154,8 +162,14 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out, dou
                   std::span<const double>(fv_).subspan(k0, k1 - k0), pt.band, pt.rhs);
   };
   // Memory: a store per block would be blocks x N x W; merge as we go in fixed groups.
-  std::vector<double> band(N * W, 0.0);
-  std::vector<Point> rhs(N, Point::Zero());
+  band.assign(N * W, 0.0);
+  rhs.assign(N, Point::Zero());
+  if (blocks == 1) {
+    // One block sums straight into the store: the same bits as 0 + its own store (a sum
+    // started at +0 is never -0), without a second zeroed store of N x W per pair.
+    scattered_add(spec_, nu, nv, pts, wts, fu_, fv_, band, rhs);
+    return;
+  }
   for (std::size_t g = 0; g < blocks; g += static_cast<std::size_t>(threads)) {
     const std::size_t m = std::min<std::size_t>(threads, blocks - g);
     parallel_for(m, threads, [&](std::size_t i) { run_block(g + i); });
@@ -166,7 +180,6 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out, dou
       pt = Part{};
     }
   }
-  return scattered_solve(spec_, nu, nv, band, rhs, smoothing, out, calm, normal);
 }
 
 bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,

@@ -115,6 +115,9 @@ class ScatteredProblem {
   /// it does not fold there), at the cost of a second factorisation.
   bool solve(int nu, int nv, double smoothing, Surface& out, double calm = 0,
              const Point* normal = nullptr) const;
+  /// solve()'s data term at (nu, nv) (scattered_add() over all points), for scattered_solve()
+  /// at several smoothness weights without summing it again. Counts at least min_u(), min_v().
+  void assemble(int nu, int nv, std::vector<double>& band, std::vector<Point>& rhs) const;
   /// The flops of solve()'s factorisation at (nu, nv): unknowns x band^2 / 2.
   double cost(int nu, int nv) const;
 
