@@ -139,18 +139,22 @@ bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double rou
   return static_cast<double>(a) >= kNearInterpolation * static_cast<double>(b);
 }
 
-std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
-                                             std::string& why) {
+namespace {
+
+// What every pair below the points is solved from: the base surface's fractions, the spec and
+// an open sheet's height direction.
+struct Setup {
+  Fractions f;
+  ScatteredSpec spec;
+  std::optional<Point> normal;
+};
+
+std::optional<Setup> prepare(const Frame& fr, const FitOptions& o) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
-  if (!f) {
-    why = "no base surface for the geometric rule";
-    return std::nullopt;
-  }
-  const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
-  const ScatteredProblem sp(fr.centred, spec, f->u, f->v);
+  if (!f) return std::nullopt;
+  Setup st{std::move(*f), {o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads}, {}};
   // An open sheet's height direction: the normal of the points' best plane (the calm term
   // acts on the height only). Closed rows have none: their net is continued linearly.
-  std::optional<Point> normal;
   if (!o.closed_u && !o.closed_v) {
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     Point mean = Point::Zero();
@@ -158,8 +162,32 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
     mean /= static_cast<double>(fr.centred.total_points());
     for (const Point& p : fr.centred.points()) cov += (p - mean) * (p - mean).transpose();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    if (eig.info() == Eigen::Success) normal = eig.eigenvectors().col(0).normalized();
+    if (eig.info() == Eigen::Success) st.normal = eig.eigenvectors().col(0).normalized();
   }
+  return st;
+}
+
+}  // namespace
+
+bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv) {
+  const std::optional<Setup> st = prepare(fr, o);
+  if (!st) return false;
+  const ScatteredProblem sp(fr.centred, st->spec, st->f.u, st->f.v);
+  if (nu < sp.min_u() || nv < sp.min_v()) return false;
+  return attempt(fr, st->spec, st->f.u, st->f.v, nu, nv, st->normal).holds;
+}
+
+std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
+                                             std::string& why) {
+  std::optional<Setup> st = prepare(fr, o);
+  if (!st) {
+    why = "no base surface for the geometric rule";
+    return std::nullopt;
+  }
+  const ScatteredSpec& spec = st->spec;
+  const Fractions* f = &st->f;
+  const std::optional<Point>& normal = st->normal;
+  const ScatteredProblem sp(fr.centred, spec, f->u, f->v);
   // The ratio nu / nv: the data's resolution along and across (its longest row's points over
   // its rows), then square.
   std::size_t longest = 0;
@@ -227,6 +255,23 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
       lo = mid;
     }
   }
+  // Then one fewer along u or along v while either holds (the bisection's pairs keep the
+  // ratio; this makes the pair minimal under the same criterion: solve, guard and fold).
+  for (bool moved = true; moved;) {
+    moved = false;
+    const auto [nu, nv] = best->first;
+    for (const auto& [a, b] : {std::pair{nu - 1, nv}, std::pair{nu, nv - 1}}) {
+      if (a < sp.min_u() || b < sp.min_v() || !failed.insert({a, b}).second) continue;
+      Tried t = attempt(fr, spec, f->u, f->v, a, b, normal);
+      ++tried;
+      if (FitMonitor* m = current_monitor()) m->pair_tried(a, b, t.holds);
+      if (t.holds) {
+        best = std::pair{std::pair{a, b}, std::move(t)};
+        moved = true;
+        break;
+      }
+    }
+  }
   const auto [nu, nv] = best->first;
   GeometricFit g;
   g.surface = std::move(best->second.s);
@@ -239,10 +284,13 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   g.tried = tried;
   const std::vector<char> cells = covered_spans(g.surface, g.u, g.v);
   const long covered = std::count(cells.begin(), cells.end(), 1);
-  g.stop = "below the points: the geometric rule with a calm net where the data is not (data in " +
-           std::to_string(covered) + " of the " + std::to_string(cells.size()) +
-           " knot spans), nu x nv by bisection on the product (" + std::to_string(tried) +
-           " pairs)";
+  g.stop =
+      "minimal below the points: the geometric rule with a calm net where the data is not "
+      "(data in " +
+      std::to_string(covered) + " of the " + std::to_string(cells.size()) +
+      " knot spans), nu x nv by bisection on the product, then one fewer along u or v "
+      "while it held (" +
+      std::to_string(tried) + " pairs)";
   return g;
 }
 
@@ -251,6 +299,12 @@ bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, Fit
   const bool above = static_cast<long>(r.surface.count_u) * r.surface.count_v > points;
   const bool folded = o.fold_guard && r.report.fold > kFoldRelative * fr.box.diagonal();
   if ((!above && !folded) || (o.tolerance.array() == 0).all()) return false;
+  // A rule the caller named is kept (the fallback is the geometric rule's): only where sfit
+  // chooses the rule (auto, fewest) or the geometric rule was asked for.
+  const Parametrization p = o.parametrization;
+  if (p != Parametrization::kAuto && p != Parametrization::kFewest &&
+      p != Parametrization::kGeometric)
+    return false;
   std::string rows_need;
   if (forced || t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need)) {
     if (above) {

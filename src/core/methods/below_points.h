@@ -30,14 +30,21 @@ bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double rou
 
 /// A surface of the geometric rule with fewer control points than `points` (the data's): nu x
 /// nv by a bisection on the product (the ratio nu / nv from the data: the longest row's points
-/// over the rows, and 1), each pair solved with the calm term, judged at every point (T per
-/// axis), by the geometric rule's guard (stays_near_where_covered()) and unfolded
-/// (geometric_fold()). nullopt where none held; `why` says what was tried.
+/// over the rows, and 1), then one fewer along u or v while either holds, each pair solved with the
+/// calm term, judged at every point (T per axis), by the geometric rule's guard
+/// (stays_near_where_covered()) and unfolded (geometric_fold()). nullopt where none held; `why`
+/// says what was tried.
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
                                              std::string& why);
 
+/// Whether fit_below_points() takes the pair (nu, nv): solved from the same base fractions
+/// with the calm term, corrected, T at every point, the guard passed and unfolded. Its result
+/// is minimal by this: one fewer along u or along v does not hold (tested).
+bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv);
+
 /// Where `r` (the search's result: the two stages' surface) has more control points than the
-/// data has points, or folds (with the fold guard on), and T is not 0: unless T forces
+/// data has points, or folds (with the fold guard on), T is not 0 and the rule is sfit's to
+/// choose (auto, fewest) or the geometric one (a rule the caller named is kept): unless T forces
 /// interpolation (`forced`, or t_forces_interpolation()), fit_below_points()'s surface
 /// replaces it (true); otherwise r's stop reason says which of the two kept it.
 bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r);
