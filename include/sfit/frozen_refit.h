@@ -22,9 +22,9 @@ class FrozenRefit {
  public:
   /// The frozen problem of `at`, the fit of `rows`; nullptr with `why` where it cannot be
   /// made: weighted rows, parameters that do not reproduce the fit's own check (rows the fit
-  /// reordered: seams aligned, rows reversed), more control points than kMaxUnknowns, a
-  /// surface closed both ways, or a factorisation that failed (a knot span without data is
-  /// decided by a small smoothness term, so it does not fail for that).
+  /// reordered: seams aligned, rows reversed), more control points than kMaxUnknowns, rows
+  /// other than a grid on a surface closed both ways, or a factorisation that failed (a knot span
+  /// without data is decided by a small smoothness term, so it does not fail for that).
   static std::shared_ptr<const FrozenRefit> make(const Rows& rows, const FitResult& at,
                                                  std::string& why);
   /// Control points above which make() refuses (the general path's banded factorisation

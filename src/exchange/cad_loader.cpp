@@ -6,10 +6,13 @@
 //      module relative to it (bin/ -> lib/sfit/, lib/ -> lib/sfit/, the Python package ->
 //      lib/sfit/: SFIT_CAD_RELATIVE, made by CMake from the install layout);
 //   3. the install prefix's lib/sfit/ (SFIT_CAD_INSTALLED);
-//   4. the build tree (SFIT_CAD_BUILT), for programs run where they were built.
-// A module of another sfit version is passed over, so an old install never serves a new build.
+//   4. the build tree (SFIT_CAD_BUILT), for programs run where they were built (first, for a
+//      program that is itself in the build tree).
+// A module of another build (another configure run: SFIT_CAD_BUILD_ID) is passed over, so an
+// old install never serves a new build.
 #include <dlfcn.h>
 
+#include <atomic>
 #include <filesystem>
 #include <mutex>
 #include <sstream>
@@ -43,6 +46,9 @@ std::vector<std::string> candidates() {
     std::error_code ec;
     auto self = std::filesystem::canonical(info.dli_fname, ec);
     if (!ec) {
+      // A program of the build tree takes the build tree's module first.
+      const std::string tree = SFIT_CAD_BUILD_TREE;
+      if (self.string().rfind(tree + "/", 0) == 0) out.push_back(SFIT_CAD_BUILT);
       const auto dir = self.parent_path();
       out.push_back((dir / kName).string());
       for (const std::string& rel : split(SFIT_CAD_RELATIVE))
@@ -67,10 +73,12 @@ const CadModule* load(std::string& why, std::string& looked) {
     using Entry = const CadModule* (*)();
     auto entry = reinterpret_cast<Entry>(::dlsym(handle, kCadModuleEntry));
     const CadModule* m = entry ? entry() : nullptr;
-    if (m && m->abi == kCadModuleAbi && std::string(m->version) == SFIT_VERSION_STRING)
+    if (m && m->abi == kCadModuleAbi && std::string(m->version) == SFIT_VERSION_STRING &&
+        std::string(m->build) == SFIT_CAD_BUILD_ID)
       return m;  // never unloaded: its code may be on the stack of a later error
     if (why.empty())
-      why = path + (m ? " is of sfit " + std::string(m->version) : " is not sfit's CAD module");
+      why = path + (m ? " is of another build of sfit (" + std::string(m->version) + ")"
+                      : " is not sfit's CAD module");
     ::dlclose(handle);
   }
   return nullptr;
@@ -78,44 +86,46 @@ const CadModule* load(std::string& why, std::string& looked) {
 
 }  // namespace
 
-const CadModule& cad_module(const std::string& option) {
+const CadModule& cad_module(const Place& place) {
+  static std::atomic<const CadModule*> loaded{nullptr};
+  if (const CadModule* m = loaded.load(std::memory_order_acquire)) return *m;
   static std::mutex mutex;
-  static const CadModule* loaded = nullptr;
   std::lock_guard lock(mutex);
-  if (loaded) return *loaded;
+  if (const CadModule* m = loaded.load(std::memory_order_relaxed)) return *m;
   std::string why, looked;
-  loaded = load(why, looked);
-  if (!loaded)
+  const CadModule* m = load(why, looked);
+  if (!m)
     throw Error(ErrorCode::kUsage,
                 "STEP and IGES need sfit's CAD module (libsfit_cad.so, OpenCASCADE), which " +
                     (why.empty() ? std::string("is not installed") : "did not load: " + why) +
                     " (looked in " + looked + ")",
-                Place{.option = option});
-  return *loaded;
+                place);
+  loaded.store(m, std::memory_order_release);
+  return *m;
 }
 
 SectionsFile read_sections_here(const std::string& path) {
-  return cad_module().read_sections_here(path);
+  return cad_module(Place{.file = path}).read_sections_here(path);
 }
 
 }  // namespace detail
 
 void require_cad(const std::string& option) {
-  detail::cad_module(option);
+  detail::cad_module(Place{.option = option});
 }
 
 void write_step(const std::string& path, const Surface& s, const CadOptions& o) {
   check_units(o.units);
-  detail::cad_module().write_step(path, s, o);
+  detail::cad_module(Place{.file = path}).write_step(path, s, o);
 }
 
 void write_iges(const std::string& path, const Surface& s, const CadOptions& o) {
   check_units(o.units);
-  detail::cad_module().write_iges(path, s, o);
+  detail::cad_module(Place{.file = path}).write_iges(path, s, o);
 }
 
 Surface read_cad_surface(const std::string& path) {
-  return detail::cad_module().read_cad_surface(path);
+  return detail::cad_module(Place{.file = path}).read_cad_surface(path);
 }
 
 }  // namespace sfit::exchange

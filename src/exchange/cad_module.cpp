@@ -10,8 +10,12 @@
 extern "C" __attribute__((visibility("default"))) const sfit::exchange::detail::CadModule*
 sfit_cad_module() {
   namespace ex = sfit::exchange;
-  static const ex::detail::CadModule table{
-      ex::detail::kCadModuleAbi,       SFIT_VERSION_STRING,  &ex::write_step, &ex::write_iges,
-      &ex::detail::read_sections_here, &ex::read_cad_surface};
+  static const ex::detail::CadModule table{.abi = ex::detail::kCadModuleAbi,
+                                           .version = SFIT_VERSION_STRING,
+                                           .build = SFIT_CAD_BUILD_ID,
+                                           .write_step = &ex::write_step,
+                                           .write_iges = &ex::write_iges,
+                                           .read_sections_here = &ex::detail::read_sections_here,
+                                           .read_cad_surface = &ex::read_cad_surface};
   return &table;
 }

@@ -152,7 +152,7 @@ void write_all(int fd, const std::string& b) {
   }
 }
 
-[[noreturn]] void child(const std::string& path, int fd) {
+[[noreturn]] void child(const std::string& path, int fd, const detail::CadModule& cad) {
   // Die of a crash rather than handle it (a sanitizer's or test framework's handlers are
   // inherited); no core file; OpenCASCADE's console messages go nowhere.
   for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGALRM, SIGTERM})
@@ -167,7 +167,7 @@ void write_all(int fd, const std::string& b) {
   }
   std::string answer;
   try {
-    answer = encode(detail::read_sections_here(path));
+    answer = encode(cad.read_sections_here(path));
   } catch (const Error& e) {
     answer = encode(e);
   } catch (const std::bad_alloc&) {
@@ -214,10 +214,11 @@ SectionsFile read_sections(const std::string& path, const SectionReadOptions& op
          std::string("cannot open input: ") + std::strerror(errno));
   if (st.st_size == 0) fail(ErrorCode::kInputSyntax, path, "empty file: not a STEP or IGES file");
 
-  detail::cad_module();  // loaded here, so that a child never loads it after the fork
+  // Loaded here: the child only calls it (no loading, no lock after the fork).
+  const detail::CadModule& cad = detail::cad_module(Place{.file = path});
   SectionsFile out;
   if (!options.isolate) {
-    out = detail::read_sections_here(path);
+    out = cad.read_sections_here(path);
   } else {
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0)
@@ -233,7 +234,7 @@ SectionsFile read_sections(const std::string& path, const SectionReadOptions& op
     }
     if (pid == 0) {
       ::close(fds[0]);
-      child(path, fds[1]);
+      child(path, fds[1], cad);
     }
     ::close(fds[1]);
     std::string answer;

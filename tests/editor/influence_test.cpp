@@ -1,6 +1,6 @@
-// The drag's linear prediction (src/server/influence.*, include/sfit/frozen_refit.h): the quick refit is least
-// squares at the counts, knots and parameters frozen at the drag's start, so S0 + g d is the
-// session's own quick refit of the same move (1e-9 of the control points' size), for every
+// The drag's linear prediction (src/server/influence.*, include/sfit/frozen_refit.h): the quick
+// refit is least squares at the counts, knots and parameters frozen at the drag's start, so S0 + g
+// d is the session's own quick refit of the same move (1e-9 of the control points' size), for every
 // rule and method; during a drag under way the server says there is none, and why.
 #include "influence.h"
 

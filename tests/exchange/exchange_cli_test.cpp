@@ -158,6 +158,7 @@ TEST(ExchangeCli, TheCadModuleLoadsOnlyWhenAskedFor) {
     ::setenv("SFIT_CAD_MODULE", module.c_str(), 1);
     const auto r = run_cli("fit " + in + " -o " + shell_quoted(dir + "/x.json") + " -o " +
                            shell_quoted(dir + "/keep.step"));
+    const auto formats = run_cli("formats");
     const auto read = run_cli(
         "fit " + shell_quoted(std::string(SFIT_TESTS_DIR) + "/bad_input/closed_sections.igs") +
         " -o " + shell_quoted(dir + "/y.json"));
@@ -168,10 +169,15 @@ TEST(ExchangeCli, TheCadModuleLoadsOnlyWhenAskedFor) {
         << r.err;
     EXPECT_NE(r.err.find(module), std::string::npos) << "names where it looked: " << r.err;
     EXPECT_EQ(read.exit_code, 2) << read.err;
+    EXPECT_NE(formats.out.find("no module"), std::string::npos) << formats.out;
+    EXPECT_NE(read.err.find("closed_sections.igs: STEP and IGES need sfit's CAD module"),
+              std::string::npos)
+        << "names the file that asked for it: " << read.err;
     EXPECT_EQ(test::read_file(dir + "/keep.step"), "old");
     EXPECT_FALSE(fs::exists(dir + "/x.json")) << "nothing is written when one output cannot be";
     EXPECT_FALSE(fs::exists(dir + "/y.json"));
   }
+  EXPECT_EQ(run_cli("formats").out.find("no module"), std::string::npos);
   // Found (beside the build or the install), the same run writes both.
   const auto r = run_cli("fit " + in + " -q -o " + shell_quoted(dir + "/x.json") + " -o " +
                          shell_quoted(dir + "/keep.step"));

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -205,18 +206,24 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
     return std::pair{nu, nv};
   };
   long tried = 0;
-  bool guard_failed = false;             // a pair held T at every point but failed a guard
-  std::set<std::pair<int, int>> failed;  // pairs tried (a pair that held ends the call)
+  bool guard_failed = false;                  // a pair held T at every point but failed a guard
+  std::set<std::pair<int, int>> failed;       // pairs tried that did not hold
+  std::map<std::pair<int, int>, Tried> held;  // and those that held
   // The surface at a product: the first ratio whose pair holds.
   auto at = [&](long product) -> std::optional<std::pair<std::pair<int, int>, Tried>> {
     for (double a : aspects) {
       const auto [nu, nv] = pair_of(product, a);
       if (static_cast<long>(nu) * nv >= points || sp.cost(nu, nv) > kBelowPointsCost) continue;
-      if (!failed.insert({nu, nv}).second) continue;  // tried before, and it failed
+      if (failed.count({nu, nv})) continue;  // tried before, and it failed
+      if (auto h = held.find({nu, nv}); h != held.end()) return std::pair{h->first, h->second};
       Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal);
       ++tried;
       if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, t.holds);
-      if (t.holds) return std::pair{std::pair{nu, nv}, std::move(t)};
+      if (t.holds) {
+        held.emplace(std::pair{nu, nv}, t);
+        return std::pair{std::pair{nu, nv}, std::move(t)};
+      }
+      failed.insert({nu, nv});
       guard_failed = guard_failed || t.ratio <= 1;
     }
     return std::nullopt;
@@ -261,10 +268,15 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
     moved = false;
     const auto [nu, nv] = best->first;
     for (const auto& [a, b] : {std::pair{nu - 1, nv}, std::pair{nu, nv - 1}}) {
-      if (a < sp.min_u() || b < sp.min_v() || !failed.insert({a, b}).second) continue;
-      Tried t = attempt(fr, spec, f->u, f->v, a, b, normal);
-      ++tried;
-      if (FitMonitor* m = current_monitor()) m->pair_tried(a, b, t.holds);
+      if (a < sp.min_u() || b < sp.min_v() || failed.count({a, b})) continue;
+      auto h = held.find({a, b});
+      Tried t = h != held.end() ? h->second : attempt(fr, spec, f->u, f->v, a, b, normal);
+      if (h == held.end()) {
+        ++tried;
+        if (FitMonitor* m = current_monitor()) m->pair_tried(a, b, t.holds);
+        if (t.holds) held.emplace(std::pair{a, b}, t);
+      }
+      if (!t.holds) failed.insert({a, b});
       if (t.holds) {
         best = std::pair{std::pair{a, b}, std::move(t)};
         moved = true;
@@ -303,8 +315,15 @@ bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, Fit
   // chooses the rule (auto, fewest) or the geometric rule was asked for.
   const Parametrization p = o.parametrization;
   if (p != Parametrization::kAuto && p != Parametrization::kFewest &&
-      p != Parametrization::kGeometric)
+      p != Parametrization::kGeometric) {
+    if (above)
+      r.report.stop_reason +=
+          std::string("; more control points than data points under the rule asked for: ") +
+          (forced ? "T forces interpolation, the data's noise or its jumps between points exceed T"
+                  : "no pair with fewer held T at every point (the default rule may fit below "
+                    "the points)");
     return false;
+  }
   std::string rows_need;
   if (forced || t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need)) {
     if (above) {

@@ -111,7 +111,7 @@ struct FrozenRefit::Impl {
 // factors sound (every span has data); false where not.
 bool FrozenRefit::Impl::make_separable(const Rows& rows, const FitResult& at) {
   // Bounds on the dense work: Gu, Gv inverted (nu^3, nv^3) and I + E K factorised
-  // (nu |J|)^3; beyond them the sparse factorisation.
+  // (nu |J|)^3; beyond them the general case's banded factorisation.
   constexpr int kMaxColumns = 12, kMaxCount = 500, kMaxCorrection = 800;
   Impl& m = *this;
   const std::size_t len = rows[0].size(), nrows = rows.size();
