@@ -61,57 +61,6 @@ bool folds(const Surface& s, const Frame& fr) {
   return geometric_fold(s) > kFoldRelative * fr.box.diagonal();
 }
 
-// Beyond this fraction of the data's diagonal outside its box, a span without data is no
-// longer calm (the guard of fit_frame.h allows a tenth where the data is).
-constexpr double kCalmMargin = 0.5;
-
-}  // namespace
-
-std::vector<char> covered_spans(const Surface& s, std::span<const double> u,
-                                std::span<const double> v) {
-  const int su = s.periodic_u ? s.count_u : s.count_u - s.degree_u;
-  const int sv = s.periodic_v ? s.count_v : s.count_v - s.degree_v;
-  std::vector<char> cell(static_cast<std::size_t>(su) * sv, 0);
-  for (std::size_t k = 0; k < u.size(); ++k) {
-    const int a = std::clamp(static_cast<int>(std::floor(u[k])), 0, su - 1);
-    const int b = std::clamp(static_cast<int>(std::floor(v[k])), 0, sv - 1);
-    cell[static_cast<std::size_t>(a) * sv + b] = 1;
-  }
-  return cell;
-}
-
-bool stays_near_where_covered(const Surface& s, std::span<const double> u,
-                              std::span<const double> v, const BoundingBox& box) {
-  const double d = box.diagonal();
-  auto within = [&](const Point& p, double margin) {
-    return (p.array() >= (box.min.array() - margin)).all() &&
-           (p.array() <= (box.max.array() + margin)).all();
-  };
-  bool hull_inside = true;  // then no sample can leave the box grown by a tenth
-  for (const Point& p : s.control) {
-    if (!within(p, d)) return false;
-    hull_inside = hull_inside && within(p, 0.1 * d);
-  }
-  if (hull_inside) return true;
-  const std::vector<char> cell = covered_spans(s, u, v);
-  const int su = s.periodic_u ? s.count_u : s.count_u - s.degree_u;
-  const int sv = s.periodic_v ? s.count_v : s.count_v - s.degree_v;
-  for (int a = 0; a <= 4 * su; ++a)
-    for (int b = 0; b <= 4 * sv; ++b) {
-      // A sample on a span's edge belongs to every span it touches.
-      bool data = false;
-      for (int x : {(a - 1) / 4, a / 4})
-        for (int y : {(b - 1) / 4, b / 4})
-          if (x >= 0 && y >= 0 && x < su && y < sv && cell[static_cast<std::size_t>(x) * sv + y])
-            data = true;
-      const Point p = s.evaluate(s.u_end() * a / (4 * su), s.v_end() * b / (4 * sv));
-      if (!within(p, data ? 0.1 * d : kCalmMargin * d)) return false;
-    }
-  return true;
-}
-
-namespace {
-
 // The problem's surface at (nu, nv), judged on its rows (the frame's, or a sample of them):
 // lowered smoothing where T was missed by a little; a fold fails the pair.
 // From `start` the weight is lowered by kSmoothingLower while T is missed: always above
@@ -181,26 +130,6 @@ PairRange range_for(const ScatteredProblem& sp, const Rows& rows) {
 }
 
 }  // namespace
-
-void to_fractions(const Surface& s, const std::vector<double>& u, const std::vector<double>& v,
-                  std::vector<double>& fu, std::vector<double>& fv) {
-  fu.resize(u.size());
-  fv.resize(v.size());
-  const double ue = s.u_end(), ve = s.v_end();
-  for (std::size_t k = 0; k < u.size(); ++k) {
-    fu[k] = u[k] / ue;
-    if (s.periodic_u && fu[k] >= 1) fu[k] = 0;
-    fv[k] = v[k] / ve;
-  }
-}
-
-double geometric_fold(const Surface& s) {
-  const int n = 2 * s.count_v + 1;
-  std::vector<double> grid(static_cast<std::size_t>(n));
-  const double e = s.v_end();
-  for (int k = 0; k < n; ++k) grid[k] = s.periodic_v ? e * k / n : e * k / (n - 1);
-  return fold_measure(s, grid);
-}
 
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections, long* pairs) {
