@@ -24,12 +24,7 @@ namespace {
 
 using std::numbers::pi;
 
-// Uniform in [0, 1) from the raw generator (its output is fixed by the standard).
-struct Uniform {
-  std::mt19937 rng;
-  explicit Uniform(std::uint32_t seed) : rng(seed) {}
-  double operator()() { return (static_cast<double>(rng()) + 0.5) / 4294967296.0; }
-};
+using test::Uniform;
 
 // A LiDAR-like corner strip: scan lines 1.5 apart at 30 degrees to the edges of a square tile
 // of `side` (units: metres), points 1.7 apart along them, the first `lines` lines from the

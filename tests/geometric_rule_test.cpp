@@ -29,13 +29,7 @@ namespace {
 
 using std::numbers::pi;
 
-// Uniform in [0, 1) from the raw generator (its output is fixed by the standard; the
-// distributions' are not).
-struct Uniform {
-  std::mt19937 rng;
-  explicit Uniform(std::uint32_t seed) : rng(seed) {}
-  double operator()() { return (static_cast<double>(rng()) + 0.5) / 4294967296.0; }
-};
+using test::Uniform;
 
 double field(double x, double y) {
   return 0.3 * std::sin(5 * x) * std::cos(4 * y) +

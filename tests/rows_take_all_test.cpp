@@ -18,13 +18,7 @@
 namespace sfit {
 namespace {
 
-struct Uniform {  // uniform in [a, b) from the raw generator (fixed by the standard)
-  std::mt19937 rng;
-  explicit Uniform(std::uint32_t seed) : rng(seed) {}
-  double operator()(double a, double b) {
-    return a + (b - a) * (static_cast<double>(rng()) + 0.5) / 4294967296.0;
-  }
-};
+using test::Uniform;
 
 Rows roofs(int lines) {
   Uniform r(3);

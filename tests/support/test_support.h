@@ -1,7 +1,9 @@
 // Helpers for the tests: data-set paths, sampled surfaces, running the CLI.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -9,6 +11,19 @@
 #include "sfit/surface_fit.h"
 
 namespace sfit::test {
+
+/// Uniform numbers from the raw generator (its output is fixed by the standard; the
+/// distributions' are not), so generated test data is the same everywhere.
+struct Uniform {
+  std::mt19937 rng;
+  explicit Uniform(std::uint32_t seed) : rng(seed) {}
+  /// In [0, 1).
+  double operator()() { return (static_cast<double>(rng()) + 0.5) / 4294967296.0; }
+  /// In [a, b).
+  double operator()(double a, double b) {
+    return a + (b - a) * (static_cast<double>(rng()) + 0.5) / 4294967296.0;
+  }
+};
 
 /// Path of a file in examples/.
 std::string example(const std::string& name);

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <span>
 #include <vector>
@@ -23,13 +22,7 @@ DeviationCheck check_rows(const Surface& s, const Rows& rows, std::span<const do
   std::vector<Point> iso(static_cast<std::size_t>(s.count_u));
   const auto& off = rows.offsets();
   const bool per_point = v.size() != rows.size();
-  // Each row's u basis, kept while the next row's u are the same numbers (a grid's rows under
-  // the paper's or the uniform rule): compared with memcmp, far cheaper than evaluating it
-  // again; the same values either way, so the same bits.
-  const std::size_t width = static_cast<std::size_t>(s.degree_u) + 1;
-  std::vector<double> row_bu;
-  std::vector<int> row_fu;
-  std::span<const double> row_u;  // the u the kept basis is of
+  RowBasis row_basis(s);  // kept across rows with the same u
   for (std::size_t j = j0; j < j1; ++j) {
     // The iso-curve v = v_j: its control points Q_i = sum_l B_l(v_j) P_il, once per row.
     const int fv = per_point ? 0 : basis_v(s, v[j], bv.data());
@@ -40,23 +33,15 @@ DeviationCheck check_rows(const Surface& s, const Rows& rows, std::span<const do
     }
     const auto row = rows[j];
     const std::span<const double> uj = u.subspan(off[j], row.size());
-    if (!per_point && (uj.size() != row_u.size() ||
-                       (uj.data() != row_u.data() &&
-                        std::memcmp(uj.data(), row_u.data(), uj.size_bytes()) != 0))) {
-      row_bu.resize(uj.size() * width);
-      row_fu.resize(uj.size());
-      for (std::size_t k = 0; k < uj.size(); ++k)
-        row_fu[k] = basis_u(s, uj[k], row_bu.data() + k * width);
-      row_u = uj;
-    }
+    if (!per_point) row_basis.of(uj);
     for (std::size_t k = 0; k < row.size(); ++k) {
       Point p = Point::Zero();
       if (per_point) {
         const int fu = basis_u(s, uj[k], bu.data());
         p = point_at(s, bu.data(), fu, v[off[j] + k]);
       } else {
-        const double* b = row_bu.data() + k * width;
-        const int fu = row_fu[k];
+        const double* b = row_basis.values(k);
+        const int fu = row_basis.first(k);
         for (int a = 0; a <= s.degree_u; ++a) p += b[a] * iso[wrap_index(fu + a, s.count_u)];
       }
       const Point d = p - row[k];

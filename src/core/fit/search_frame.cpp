@@ -4,7 +4,6 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -50,12 +49,7 @@ PointsVerdict check_points(const Surface& s, const Rows& rows, std::span<const d
     std::vector<Point> iso(static_cast<std::size_t>(s.count_u));
     PointsVerdict& out = part[b];
     const bool per_point = v.size() != M;  // FitResult::v_points
-    // A row's u basis, kept while the next row's u are the same numbers (a grid's rows under
-    // the paper's or uniform rule), as check_deviation() does: the same values, the same bits.
-    const std::size_t width = static_cast<std::size_t>(s.degree_u) + 1;
-    std::vector<double> row_bu;
-    std::vector<int> row_fu;
-    std::span<const double> row_u;
+    RowBasis row_basis(s);  // kept across rows with the same u, as check_deviation() does
     for (std::size_t j = b * per; j < std::min(M, (b + 1) * per) && !stop.load(); ++j) {
       const int fv = per_point ? 0 : basis_v(s, v[j], bv.data());
       for (int i = 0; i < s.count_u && !per_point; ++i) {
@@ -65,23 +59,15 @@ PointsVerdict check_points(const Surface& s, const Rows& rows, std::span<const d
       }
       const auto row = rows[j];
       const std::span<const double> uj = u.subspan(rows.offsets()[j], row.size());
-      if (!per_point && (uj.size() != row_u.size() ||
-                         (uj.data() != row_u.data() &&
-                          std::memcmp(uj.data(), row_u.data(), uj.size_bytes()) != 0))) {
-        row_bu.resize(uj.size() * width);
-        row_fu.resize(uj.size());
-        for (std::size_t k = 0; k < uj.size(); ++k)
-          row_fu[k] = basis_u(s, uj[k], row_bu.data() + k * width);
-        row_u = uj;
-      }
+      if (!per_point) row_basis.of(uj);
       for (std::size_t k = 0; k < row.size(); ++k) {
         Point p = Point::Zero();
         if (per_point) {
           const int fu = basis_u(s, uj[k], bu.data());
           p = point_at(s, bu.data(), fu, v[rows.offsets()[j] + k]);
         } else {
-          const double* bk = row_bu.data() + k * width;
-          const int fu = row_fu[k];
+          const double* bk = row_basis.values(k);
+          const int fu = row_basis.first(k);
           for (int a = 0; a <= s.degree_u; ++a) p += bk[a] * iso[wrap_index(fu + a, s.count_u)];
         }
         const Point d = p - row[k];
