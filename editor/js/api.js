@@ -1,4 +1,4 @@
-// The editor's JSON API (docs/editor.md), with the token from the page's address.
+// The editor's JSON API (docs/editor-api.md), with the token from the page's address.
 import { unpack } from "./pack.js";
 const token = new URLSearchParams(location.search).get("token") || "";
 
@@ -42,7 +42,7 @@ export const edit = async (op, rows = true, exact = false) => {
   return st;
 };
 
-// The moved point's influence on the quick refit (docs/editor.md, "Latency"; predict.js).
+// The moved point's influence on the quick refit (docs/editor-latency.md; predict.js).
 export const influence = (row, index) => call("POST", "/api/influence", { row, index });
 export const undo = () => call("POST", "/api/undo", {});
 export const redo = () => call("POST", "/api/redo", {});

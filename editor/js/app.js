@@ -1,5 +1,5 @@
 // The editor page: the rows and the surface in a three.js view; edits go to the server's
-// JSON API (docs/editor.md), which refits through IncrementalFit. This module shows the
+// JSON API (docs/editor-api.md), which refits through IncrementalFit. This module shows the
 // states the server answers and sends the moves; view.js draws, draw.js builds what is
 // drawn, drag.js picks and drags, panel.js is the panel, legend.js the colour legends.
 import { $, S, hook } from "./store.js";

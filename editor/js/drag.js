@@ -194,7 +194,7 @@ canvas.addEventListener(moveEvent, (e) => {
   // Drawn with the refit of this step (or a newer one), whose answer comes next: a frame of
   // the moved point alone would only delay that one on a software rasteriser. Nor while the
   // influence asked for is on its way (the prediction draws the newest move when it comes):
-  // the frames would take the cores its factorisation needs (docs/editor.md, "Latency").
+  // the frames would take the cores its factorisation needs (docs/editor-latency.md).
   if (!d.pred && !S.fns.moveInFlight() && !predict.asked()) redraw();
 });
 

@@ -1,5 +1,5 @@
 // A surface whose control points came packed (POST /api/edit?pack=1 or ?pack=f32,
-// docs/editor.md) made back into the contract's nested "control_points": "control_points_f64"
+// docs/editor-api.md) made back into the contract's nested "control_points": "control_points_f64"
 // (base64 of the little-endian doubles, x y z of each point row by row) exactly;
 // "control_points_f32" (floats of each point less "control_points_origin") to within 1e-7 of
 // the control points' box, for drawing a drag step.

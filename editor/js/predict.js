@@ -1,4 +1,4 @@
-// The drag's prediction (docs/editor.md, "Latency"). With the counts, knots and parameters of
+// The drag's prediction (docs/editor-latency.md). With the counts, knots and parameters of
 // the full fit frozen for the drag (the quick refit, include/sfit/frozen_refit.h), the quick refit
 // is least squares at fixed counts, knots and parameters: a linear map of the data. Moving
 // point k by d moves every control point by g_k d, where g_k is the fit of data that are zero but

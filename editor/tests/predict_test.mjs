@@ -1,4 +1,4 @@
-// The drag's prediction (editor/js/predict.js, docs/editor.md "Latency"), in Debian's Chromium
+// The drag's prediction (editor/js/predict.js, docs/editor-latency.md), in Debian's Chromium
 // (headless, software GL) with real mouse events: where the quick refit is linear (counts held,
 // parameters uniform) the page draws S0 + g d at every pointer move itself, and that IS the
 // refit: the control points it shows equal the server's quick refit of the same position

@@ -1,4 +1,4 @@
-// The JSON of the editor's API (docs/editor.md): the state it returns and the requests it
+// The JSON of the editor's API (docs/editor-api.md): the state it returns and the requests it
 // reads. A malformed request throws Error(kUsage) naming the field and what is wrong.
 #pragma once
 

@@ -1,6 +1,6 @@
 // `sfit edit`: a local HTTP server for the browser editor. The designer moves, adds and
 // deletes data points and rows; every change refits through IncrementalFit and the page shows
-// the new surface. docs/editor.md describes the page and the JSON API.
+// the new surface. docs/editor.md describes the page, docs/editor-api.md the JSON API.
 #pragma once
 
 #include <chrono>
