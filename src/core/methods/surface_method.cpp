@@ -107,6 +107,15 @@ FitResult fit_surface_search(const FitSpec& spec) {
   if (step > 1)
     std::stable_partition(rules.begin(), rules.end(),
                           [](Parametrization r) { return r != Parametrization::kGeometric; });
+  // On large ragged rows the chord rule goes first: rows sampled unevenly are where the index
+  // says least. On 10^6 such points at 1e-3 the uniform rule, searched first, found nothing;
+  // with the chord rule first its 13 x 11 bounds the others: 66 pairs instead of 82, 1.2-1.4 s
+  // of CPU instead of 1.5-1.7. (A tie now keeps the chord rule's surface.)
+  bool grid = true;
+  for (std::size_t j = 1; j < rows.size() && grid; ++j) grid = rows[j].size() == rows[0].size();
+  if (step > 1 && !grid)
+    std::stable_partition(rules.begin(), rules.end(),
+                          [](Parametrization r) { return r == Parametrization::kChord; });
   // Rows (and a grid's columns) fitted as curves at T bound each rule's counts from below
   // (count_floor.h): a rule whose bound cannot beat the best, or that the sample's
   // rows are too short to reach, is not searched; where noise forces every rule to
