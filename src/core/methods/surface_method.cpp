@@ -129,6 +129,9 @@ FitResult fit_surface_search(const FitSpec& spec) {
   std::vector<Parametrization> searched;
   std::optional<GeometricFit> geo;  // the kGeometric rule's surface (geometric_search.h)
   KeptSurfaces kept;                // no pair solved twice (search_frame.h)
+  // The best row rule's parameters (u per point, v per row): the winner as the search kept it
+  // needs no new problem and no new pass over every point to get them.
+  std::vector<double> best_u, best_v;
   const bool linf_may = o.norm != FitNorm::kL2 && !weights_matter(rows);
   // Each rule's floor, made once (the geometric rule reads the chord rule's): its rows first
   // (row_floor_of(), nv at its least), its columns only where the rows do not decide (noise
@@ -297,6 +300,8 @@ FitResult fit_surface_search(const FitSpec& spec) {
     if (found && static_cast<long>(found->nu) * found->nv < bound) {
       bound = static_cast<long>(found->nu) * found->nv;
       best = found;
+      best_u = prob.u_at(found->nu);  // (its moments are cached: it was judged on all points)
+      best_v = prob.v_at(few.nv(found->nv));
     }
   }
   progress_advance(rules.size());
@@ -377,12 +382,20 @@ FitResult fit_surface_search(const FitSpec& spec) {
   } else {
     // The winner as the search kept it, else remade (deterministic: the same bits as when it
     // was judged), and checked.
-    TensorProblem prob(fr.centred, spec_of(os, best->rule, fr.threads, seam_offsets));
     const Surface* held = kept.held({best->rule, best->norm, best->nu, best->nv});
-    Surface s =
-        held ? *held
-             : *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
-    std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(few.nv(best->nv));
+    Surface s;
+    std::vector<double> u, v;
+    if (held && !best_u.empty()) {
+      s = *held;
+      u = std::move(best_u);
+      v = std::move(best_v);
+    } else {
+      TensorProblem prob(fr.centred, spec_of(os, best->rule, fr.threads, seam_offsets));
+      s = held ? *held
+               : *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
+      u = prob.u_at(best->nu);
+      v = prob.v_at(few.nv(best->nv));
+    }
     DeviationCheck c;
     progress_phase("check", 1);
     fr.judge(s, u, v, &c);
