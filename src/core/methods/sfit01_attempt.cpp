@@ -123,7 +123,8 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   // with rows_take_all_ the half of the round-off allowance the rows left (interpolation).
   const Point column_bound = rows_take_all_ ? Point::Constant(0.5 * roundoff_) : bound;
   Columns columns =
-      fit_columns(rows, rs.curves, nu, across_.value_or(rule_), o_, column_bound, threads_);
+      fit_columns(rows, rs.curves, nu, across_.value_or(rule_), o_, column_bound, threads_,
+                  keep_state_ ? nullptr : &rs.curves);  // one shot: the rows' controls go
   const std::vector<CurveFit>& column_fits = columns.fits;
   const Represented& cs = columns.represented;
   const int nv = cs.common;
