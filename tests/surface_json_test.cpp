@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include "sfit/error.h"
 #include "test_support.h"
@@ -53,6 +56,31 @@ TEST(SurfaceJson, ReloadsBitForBit) {
       EXPECT_EQ(0,
                 std::memcmp(r.control.data(), s.control.data(), s.control.size() * sizeof(Point)));
     }
+}
+
+// The text is written a row of control points at a time: the same bytes as the whole JSON
+// tree's dump, with and without the report, and the file holds exactly that text.
+TEST(SurfaceJson, StreamedTextIsTheTreesDump) {
+  FitReport r;
+  r.points = 10;
+  r.rows = 2;
+  r.row_counts = {4, 5};
+  r.stop_reason = "minimal \"quoted\" and \u00e9";
+  r.max_deviation = Point(1e-300, 0.1, 12345.678);
+  for (bool pu : {false, true})
+    for (bool pv : {false, true})
+      for (const FitReport* report : std::initializer_list<const FitReport*>{nullptr, &r}) {
+        const Surface s = sample_surface(pu, pv);
+        auto j = surface_to_json(s);
+        if (report) j["report"] = report_to_json(*report);
+        const std::string text = surface_json_text(s, report);
+        EXPECT_EQ(text, j.dump() + '\n');
+        const std::string path = test::temp_dir() + "/streamed.json";
+        write_surface_json(path, s, report);
+        std::ifstream in(path, std::ios::binary);
+        const std::string file((std::istreambuf_iterator<char>(in)), {});
+        EXPECT_EQ(file, text);
+      }
 }
 
 TEST(SurfaceJson, ReportHasTheContractKeys) {

@@ -20,7 +20,9 @@ void SurfaceFitter::centre(const Rows& rows) {
     threads_ = given_->threads;
     box_ = given_->box;
     centre_ = given_->centre;
-    centred_ = given_->centred;
+    centred_ = &given_->centred;
+    own_centred_ = Rows();
+    centred_rows_ = centred_->size();
     roundoff_ = given_->roundoff;
     return;
   }
@@ -32,16 +34,18 @@ void SurfaceFitter::centre(const Rows& rows) {
 }
 
 void SurfaceFitter::copy_centred(const Rows& rows) {
-  centred_ = rows;
+  own_centred_ = rows;
   parallel_for(rows.size(), threads_, [&](std::size_t j) {
-    for (Point& p : centred_.mutable_row(j)) p -= centre_;
+    for (Point& p : own_centred_.mutable_row(j)) p -= centre_;
   });
+  centred_ = nullptr;
+  centred_rows_ = own_centred_.size();
 }
 
 SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
                                                const std::vector<char>* changed) {
   Attempt at;
-  const Rows& rows = centred_;
+  const Rows& rows = centred();
   const std::size_t M = rows.size();
   auto report = [&](std::string_view stage, std::size_t done, std::size_t total) {
     if (done == 0) {
@@ -89,7 +93,8 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   rows_refitted_ = fit_curves(M, row_points, row_positions_of, row_options, o_.row_count_hints,
                               threads_, fits, changed, row_weights_of);
   // `fast_fits` (the searches' own results) are what an update chains its hints from.
-  std::vector<CurveFit> fast_fits = fits;
+  std::vector<CurveFit> fast_fits;
+  if (keep_state_) fast_fits = fits;
   exact_maximum(fits, row_points, row_positions_of, row_options, threads_, row_weights_of);
   // Rows whose fit changed need a new re-representation.
   std::vector<char> dirty(M, 1);
@@ -104,13 +109,22 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
                 false, longest, {}, changed ? &row_curves_ : nullptr, row_common_,
                 changed ? &dirty : nullptr, rows.weighted(), o_.rerepresentation);
   const int nu = rs.common;
+  FitReport& r = at.report;
+  r.row_counts.resize(M);
+  r.solves = 0;
+  for (std::size_t j = 0; j < M; ++j) {
+    r.row_counts[j] = fits[j].curve.count();
+    r.solves += fits[j].solves;
+  }
+  if (!keep_state_) std::vector<CurveFit>().swap(fits);  // re-represented: not needed further
 
   // Transverse stage: column i holds control point i of every row curve (docs/method.md 5).
   // The fold guard may set its own rule across the rows (across_). Its budget: the rows', or
   // with rows_take_all_ the half of the round-off allowance the rows left (interpolation).
   const Point column_bound = rows_take_all_ ? Point::Constant(0.5 * roundoff_) : bound;
   Columns columns =
-      fit_columns(rows, rs.curves, nu, across_.value_or(rule_), o_, column_bound, threads_);
+      fit_columns(rows, rs.curves, nu, across_.value_or(rule_), o_, column_bound, threads_,
+                  keep_state_ ? nullptr : &rs.curves);  // one shot: the rows' controls go
   const std::vector<CurveFit>& column_fits = columns.fits;
   const Represented& cs = columns.represented;
   const int nv = cs.common;
@@ -132,13 +146,6 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
     std::copy(rs.curves[j].parameters.begin(), rs.curves[j].parameters.end(),
               at.u.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[j]));
 
-  FitReport& r = at.report;
-  r.row_counts.resize(M);
-  r.solves = 0;
-  for (std::size_t j = 0; j < M; ++j) {
-    r.row_counts[j] = fits[j].curve.count();
-    r.solves += fits[j].solves;
-  }
   r.column_counts.resize(static_cast<std::size_t>(nu));
   for (int i = 0; i < nu; ++i) {
     r.column_counts[i] = column_fits[i].curve.count();
@@ -150,10 +157,12 @@ SurfaceFitter::Attempt SurfaceFitter::fit_once(const Point& bound,
   r.repaired_columns = cs.repaired;
 
   // Keep the row stage for update(): fits, and re-representations at nu.
-  row_fits_ = std::move(fast_fits);
-  row_final_fits_ = std::move(fits);
-  row_curves_ = rs.curves;
-  row_common_ = nu;
+  if (keep_state_) {
+    row_fits_ = std::move(fast_fits);
+    row_final_fits_ = std::move(fits);
+    row_curves_ = std::move(rs.curves);
+    row_common_ = nu;
+  }
   return at;
 }
 

@@ -25,12 +25,12 @@ FitResult SurfaceFitter::finish(Attempt& at, int tightenings, const DeviationChe
   // Shape measures (fold_check.h) on the centred surface and rows: the surface
   // moved to the data's coordinates and back, as the surface returned is (the same bits).
   const BoundingBox box{box_.min - centre_, box_.max - centre_};
-  Surface centred = at.surface;
-  for (Point& p : centred.control) p += centre_;
-  for (Point& p : centred.control) p -= centre_;
-  const ShapeMeasures m = measure_shape(centred, centred_, at.u, at.v, box, o_.closed_u);
+  Surface round_trip = at.surface;
+  for (Point& p : round_trip.control) p += centre_;
+  for (Point& p : round_trip.control) p -= centre_;
+  const ShapeMeasures m = measure_shape(round_trip, centred(), at.u, at.v, box, o_.closed_u);
   FitResult out = frame_result(std::move(at.surface), std::move(at.u), std::move(at.v),
-                               std::move(at.report), check, m, centred_, centre_, roundoff_, o_);
+                               std::move(at.report), check, m, centred(), centre_, roundoff_, o_);
   FitReport& r = out.report;
   r.parametrization = rule_;
   r.parametrization_across = across_.value_or(rule_);
@@ -48,6 +48,7 @@ long size_of(const FitResult& f) {
 FitResult fit_sfit01_method(const FitSpec& spec) {
   SurfaceFitter f(spec.options);
   f.rows_take_all(spec.rows_take_all);
+  f.keep_state(false);  // one fit, no update
   return f.fit_aligned(spec.rows, spec.seam_offsets, &spec.centring);
 }
 
@@ -140,6 +141,7 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
     --lower.degree_v;
     SurfaceFitter f(lower);
     f.degree_lowered_ = true;  // one step down, no further (each step is a whole fit)
+    f.keep_state_ = false;     // its fit is returned, never updated
     f.row_seam_offsets_ = row_seam_offsets_;
     f.given_ = given_;  // the same rows: the same centring
     try {
@@ -219,7 +221,7 @@ FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
       valid_ = false;  // the kept state is not the first attempt's
     }
     progress_phase("check", 1);
-    check = check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_, threads_);
+    check = check_deviation(at.surface, centred(), at.u, at.v, o_.tolerance, roundoff_, threads_);
     progress_advance(1);
     if (check.within || tightenings == 3) break;
     ++tightenings;
@@ -232,15 +234,15 @@ FitResult SurfaceFitter::update_aligned(const Rows& rows, const std::vector<std:
   const double t0 = now();
   // The fit in full, as the driver's fit_aligned() of these rows would run it.
   const auto in_full = [&] { return fit_aligned(rows, {}, &c); };
-  if (!valid_ || rows.size() != centred_.size() || c.box.min != box_.min || c.box.max != box_.max ||
-      rule_ != o_.parametrization)  // (never equal for kFewest)
+  if (!valid_ || !keep_state_ || rows.size() != centred_rows_ || c.box.min != box_.min ||
+      c.box.max != box_.max || rule_ != o_.parametrization)  // (never equal for kFewest)
     return in_full();
   // Same box, so the same centre, round-off allowance and budget: refresh the edited rows.
   std::vector<char> mark(rows.size(), 0);
   for (std::size_t j : changed) mark.at(j) = 1;
   valid_ = false;  // until the update completes
   threads_ = c.threads;
-  centred_ = c.centred;  // the driver's: the rows less the same centre
+  centred_ = &c.centred;  // the driver's: the rows less the same centre
   Attempt at;
   try {
     at = fit_once(bound_, &mark);
@@ -249,7 +251,7 @@ FitResult SurfaceFitter::update_aligned(const Rows& rows, const std::vector<std:
     return in_full();  // the fit would have met the same failure first: do exactly what it does
   }
   const DeviationCheck check =
-      check_deviation(at.surface, centred_, at.u, at.v, o_.tolerance, roundoff_, threads_);
+      check_deviation(at.surface, centred(), at.u, at.v, o_.tolerance, roundoff_, threads_);
   if (!check.within) return in_full();  // the fit would tighten: do exactly that
   FitResult out = finish(at, 0, check, t0);
   if (rule_ != Parametrization::kPaper && failed_guard(out.surface, box_))

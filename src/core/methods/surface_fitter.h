@@ -51,6 +51,9 @@ class SurfaceFitter {
     given_ = nullptr;
     return r;
   }
+  /// false: a one-shot fit (no update_aligned() follows): the row stage is not kept for
+  /// updates, and the row fits are released before the transverse stage (less memory).
+  void keep_state(bool on) { keep_state_ = on; }
   /// Rows refitted by the last fit_aligned() or update_aligned().
   std::size_t rows_refitted() const { return rows_refitted_; }
   /// The stage budgets. false (the paper's): T/2 for the rows and T/2 for the columns. true:
@@ -73,7 +76,10 @@ class SurfaceFitter {
   FitResult finish(Attempt& at, int tightenings, const struct DeviationCheck& check,
                    double seconds_start) const;
   void centre(const Rows& rows);
-  void copy_centred(const Rows& rows);  // centred_ = rows - centre_
+  void copy_centred(const Rows& rows);  // own_centred_ = rows - centre_
+  // The centred rows of the fit running: the driver's (given_, or update_aligned()'s centring;
+  // no copy of the points) or the fitter's own copy.
+  const Rows& centred() const { return centred_ ? *centred_ : own_centred_; }
 
   FitOptions o_;
   Parametrization rule_ = Parametrization::kPaper;  // the rule of the last fit
@@ -81,11 +87,14 @@ class SurfaceFitter {
   BoundingBox box_;
   Point centre_ = Point::Zero();
   double roundoff_ = 0;
-  Rows centred_;
+  Rows own_centred_;
+  const Rows* centred_ = nullptr;  // valid during a fit or an update only
+  std::size_t centred_rows_ = 0;   // the last fit's rows (update_aligned() compares)
   // State of the first (untightened) attempt of the last fit, reused by update().
   bool valid_ = false;
   Point bound_ = Point::Zero();
   bool rows_take_all_ = false;            // rows_take_all()
+  bool keep_state_ = true;                // keep_state()
   std::vector<CurveFit> row_fits_;        // the count searches' results (hints chain from them)
   std::vector<CurveFit> row_final_fits_;  // after exact_maximum(): what was re-represented
   std::vector<Rerepresentation> row_curves_;

@@ -99,16 +99,23 @@ FitResult fit_surface_search(const FitSpec& spec) {
   const std::size_t step =
       points > kSearchPoints ? (points + kSearchPoints - 1) / kSearchPoints : 1;
   std::vector<Parametrization> rules = rules_of(o.parametrization);
-  // On a large grid (every row as long) the row rules are cheap (one Gram matrix for all rows,
-  // a separable solve) and the geometric rule's scattered solves over all points cost most
-  // (on a smooth 10^6-point grid 1.4 of 2.7 s CPU, for a surface no smaller): it goes last,
-  // bounded by their best. On ragged rows it stays first, where it bounds their costlier
-  // searches.
-  bool grid = true;
-  for (std::size_t j = 1; j < rows.size() && grid; ++j) grid = rows[j].size() == rows[0].size();
-  if (step > 1 && grid)
+  // On large data the geometric rule's scattered solves cost most (on a smooth 10^6-point
+  // grid 1.4 of 2.7 s CPU, for a surface no smaller; on 10^6 ragged, unevenly sampled points
+  // at 1e-3 a third of the CPU, for no surface at all while the chord rule gives 13 x 11): it
+  // goes last, bounded by the row rules' best (the 10^5-point ragged peer set keeps its
+  // surfaces at 1e-2 ... 1e-4 with 6-16 % fewer pairs solved).
+  if (step > 1)
     std::stable_partition(rules.begin(), rules.end(),
                           [](Parametrization r) { return r != Parametrization::kGeometric; });
+  // On large ragged rows the chord rule goes first: rows sampled unevenly are where the index
+  // says least. On 10^6 such points at 1e-3 the uniform rule, searched first, found nothing;
+  // with the chord rule first its 13 x 11 bounds the others: 66 pairs instead of 82, 1.2-1.4 s
+  // of CPU instead of 1.5-1.7. (A tie now keeps the chord rule's surface.)
+  bool grid = true;
+  for (std::size_t j = 1; j < rows.size() && grid; ++j) grid = rows[j].size() == rows[0].size();
+  if (step > 1 && !grid)
+    std::stable_partition(rules.begin(), rules.end(),
+                          [](Parametrization r) { return r == Parametrization::kChord; });
   // Rows (and a grid's columns) fitted as curves at T bound each rule's counts from below
   // (count_floor.h): a rule whose bound cannot beat the best, or that the sample's
   // rows are too short to reach, is not searched; where noise forces every rule to
@@ -122,6 +129,9 @@ FitResult fit_surface_search(const FitSpec& spec) {
   std::vector<Parametrization> searched;
   std::optional<GeometricFit> geo;  // the kGeometric rule's surface (geometric_search.h)
   KeptSurfaces kept;                // no pair solved twice (search_frame.h)
+  // The best row rule's parameters (u per point, v per row): the winner as the search kept it
+  // needs no new problem and no new pass over every point to get them.
+  std::vector<double> best_u, best_v;
   const bool linf_may = o.norm != FitNorm::kL2 && !weights_matter(rows);
   // Each rule's floor, made once (the geometric rule reads the chord rule's): its rows first
   // (row_floor_of(), nv at its least), its columns only where the rows do not decide (noise
@@ -154,9 +164,9 @@ FitResult fit_surface_search(const FitSpec& spec) {
     // on large data that rule is the two-stage fit's alone.
     if (step > 1 && rule == Parametrization::kPaper) continue;
     if (rule == Parametrization::kGeometric) {
-      // Its own search (scattered parameters, geometric_search.h), first. On large data its
-      // count bounds the other rules' searches (they cost most there); on small data they run
-      // with the bounds they had without it; it is kept after them where it is smaller.
+      // Its own search (scattered parameters, geometric_search.h): first on small data, where
+      // the row rules run with the bounds they had without it; last on large data, below the
+      // row rules' best. It is kept after them where it is smaller.
       if (!o.closed_v && rows.size() < static_cast<std::size_t>(o.degree_v) + 1) continue;
       searched.push_back(rule);
       // The rows' floor at chord-length positions (count_floor.h; a heuristic here too: a
@@ -184,9 +194,9 @@ FitResult fit_surface_search(const FitSpec& spec) {
       } else if (monitor) {
         monitor->found(geo->surface.count_u, geo->surface.count_v);
       }
-      // On large data the row rules search below twice its count (not below its count: a
-      // tight bound can end their search at a pair that fails a guard, and miss a smaller
-      // one); it is kept after them where it is smaller.
+      // Rules searched after it (registered ones on large data) search below twice its count
+      // (not below its count: a tight bound can end their search at a pair that fails a
+      // guard, and miss a smaller one).
       if (geo && step > 1) bound = std::min(bound, 2 * n);
       continue;
     }
@@ -290,6 +300,8 @@ FitResult fit_surface_search(const FitSpec& spec) {
     if (found && static_cast<long>(found->nu) * found->nv < bound) {
       bound = static_cast<long>(found->nu) * found->nv;
       best = found;
+      best_u = prob.u_at(found->nu);  // (its moments are cached: it was judged on all points)
+      best_v = prob.v_at(few.nv(found->nv));
     }
   }
   progress_advance(rules.size());
@@ -370,12 +382,20 @@ FitResult fit_surface_search(const FitSpec& spec) {
   } else {
     // The winner as the search kept it, else remade (deterministic: the same bits as when it
     // was judged), and checked.
-    TensorProblem prob(fr.centred, spec_of(os, best->rule, fr.threads, seam_offsets));
     const Surface* held = kept.held({best->rule, best->norm, best->nu, best->nv});
-    Surface s =
-        held ? *held
-             : *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
-    std::vector<double> u = prob.u_at(best->nu), v = prob.v_at(few.nv(best->nv));
+    Surface s;
+    std::vector<double> u, v;
+    if (held && !best_u.empty()) {
+      s = *held;
+      u = std::move(best_u);
+      v = std::move(best_v);
+    } else {
+      TensorProblem prob(fr.centred, spec_of(os, best->rule, fr.threads, seam_offsets));
+      s = held ? *held
+               : *few.raise(solve_pair(prob, best->norm, best->nu, few.nv(best->nv), o.tolerance));
+      u = prob.u_at(best->nu);
+      v = prob.v_at(few.nv(best->nv));
+    }
     DeviationCheck c;
     progress_phase("check", 1);
     fr.judge(s, u, v, &c);

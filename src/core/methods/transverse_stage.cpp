@@ -70,7 +70,8 @@ std::vector<double> averaged_positions(std::size_t n_curves, GetPoints&& points_
 }  // namespace
 
 Columns fit_columns(const Rows& rows, const std::vector<Rerepresentation>& row_curves, int nu,
-                    Parametrization across, const FitOptions& o, const Point& bound, int threads) {
+                    Parametrization across, const FitOptions& o, const Point& bound, int threads,
+                    std::vector<Rerepresentation>* release) {
   const std::size_t M = rows.size();
   auto report = [&](std::string_view stage, std::size_t done, std::size_t total) {
     if (done == 0) {
@@ -96,6 +97,8 @@ Columns fit_columns(const Rows& rows, const std::vector<Rerepresentation>& row_c
   // Weights across (docs/seams.md): control point i of row j weighs the mean
   // weight of the row's points it influences, each counted by its basis value there.
   const std::vector<double> column_weights = control_weights(rows, row_curves, nu, threads);
+  if (release)
+    for (Rerepresentation& c : *release) std::vector<Point>().swap(c.curve.control);
   const WeightsOf column_weights_of =
       column_weights.empty() ? WeightsOf() : WeightsOf([&](std::size_t i) {
         return std::span<const double>(column_weights.data() + i * M, M);

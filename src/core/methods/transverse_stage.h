@@ -21,7 +21,10 @@ struct Columns {
 /// `rows`), each column within `bound` per axis, at the positions of the rule `across`
 /// (kPaper: the paper's parameters) averaged over the columns. Weighted rows weigh the
 /// columns' points (docs/seams.md). Reports progress as "columns" through o.progress.
+/// `release` (the very vector `row_curves`, or null): its curves' control points are freed
+/// once copied into the columns, for a caller that needs them no further (less memory).
 Columns fit_columns(const Rows& rows, const std::vector<Rerepresentation>& row_curves, int nu,
-                    Parametrization across, const FitOptions& o, const Point& bound, int threads);
+                    Parametrization across, const FitOptions& o, const Point& bound, int threads,
+                    std::vector<Rerepresentation>* release = nullptr);
 
 }  // namespace sfit::detail
