@@ -109,18 +109,20 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
 
 bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
                             std::string& why) {
-  const std::size_t M = centred.size(), picks = std::min<std::size_t>(8, M);
+  // A row of at most degree + 1 points is interpolated by any count: it says nothing about
+  // noise (60 rows of 2 points each on a smooth sheet once read as "T forces it"). Only the
+  // longer rows are sampled; where there are none, nothing shows that T forces interpolation.
+  std::vector<std::size_t> longer;
+  for (std::size_t i = 0; i < centred.size(); ++i)
+    if (centred[i].size() >= static_cast<std::size_t>(o.degree_u) + 2) longer.push_back(i);
+  const std::size_t M = longer.size(), picks = std::min<std::size_t>(8, M);
   if (picks == 0) return false;
   Point bound;
   for (int a = 0; a < 3; ++a) bound[a] = o.tolerance[a] > 0 ? o.tolerance[a] : roundoff;
   std::vector<long> need(picks, 0), have(picks, 0);
   parallel_for(picks, threads_for(centred, o.threads), [&](std::size_t k) {
-    const auto row = centred[k * (M - 1) / std::max<std::size_t>(1, picks - 1)];
+    const auto row = centred[longer[k * (M - 1) / std::max<std::size_t>(1, picks - 1)]];
     have[k] = static_cast<long>(row.size());
-    if (row.size() < static_cast<std::size_t>(o.degree_u) + 2) {
-      need[k] = have[k];  // a row this short is interpolated by any count
-      return;
-    }
     CurveFitOptions c;
     c.degree = o.degree_u;
     c.periodic = o.closed_u;
