@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "pair_search.h"
 #include "sfit/surface_fit.h"
 #include "test_support.h"
 
@@ -95,6 +97,23 @@ TEST(SearchCost, SampledSearchSameOnOneAndFourThreads) {
   EXPECT_EQ(fits[0].report.stop_reason, fits[1].report.stop_reason);
   EXPECT_NE(fits[0].report.stop_reason.find("searched on every"), std::string::npos)
       << fits[0].report.stop_reason;
+}
+
+// The sampled search's stop reason names its step as an English ordinal.
+TEST(SearchCost, SampledStopReasonSaysTheOrdinal) {
+  for (const auto& [step, word] :
+       std::vector<std::pair<int, std::string>>{{2, "every 2nd point"},
+                                                {3, "every 3rd point"},
+                                                {4, "every 4th point"},
+                                                {11, "every 11th point"},
+                                                {12, "every 12th point"},
+                                                {20, "every 20th point"},
+                                                {21, "every 21st point"},
+                                                {102, "every 102nd point"},
+                                                {113, "every 113th point"}}) {
+    EXPECT_NE(detail::minimal_on_sample(step).find(word), std::string::npos)
+        << detail::minimal_on_sample(step);
+  }
 }
 
 }  // namespace

@@ -138,4 +138,15 @@ PairChoice search_pairs(const PairRange& r, long bound, PairOracle& holds) {
   return best;
 }
 
+std::string minimal_on_sample(int step) {
+  const int last = step % 10, tens = step % 100 / 10;
+  const char* suffix = tens == 1   ? "th"
+                       : last == 1 ? "st"
+                       : last == 2 ? "nd"
+                       : last == 3 ? "rd"
+                                   : "th";
+  return "minimal (searched on every " + std::to_string(step) + suffix +
+         " point of each row, verified on all)";
+}
+
 }  // namespace sfit::detail

@@ -64,4 +64,8 @@ PairChoice search_pairs(const PairRange& range, long bound, PairOracle& holds);
 std::pair<int, int> descend(int nu, int nv, const PairRange& range, PairOracle& oracle,
                             const std::function<bool(int, int)>& worth_trying = {});
 
+/// The stop reason of a search made on every `step`-th point of each row and verified on all
+/// of them ("every 2nd point", "every 20th point").
+std::string minimal_on_sample(int step);
+
 }  // namespace sfit::detail

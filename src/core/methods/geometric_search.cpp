@@ -264,8 +264,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
       return std::nullopt;
     }
     std::tie(nu, nv) = descend(nu, nv, range_for(full, fr.centred), all);
-    stop = "minimal (searched on every " + std::to_string(step) +
-           "th point of each row, verified on all)";
+    stop = minimal_on_sample(step);
   }
   tried += all.tried();
   // Without a sample `full` is the problem *sp (the same points and fractions): its kept

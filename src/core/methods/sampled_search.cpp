@@ -76,8 +76,7 @@ PairChoice search_on_sample(const Frame& fr, const FewRows& few, const TensorPro
     const auto [mu, mv] = descend(nu, nv, range, on_all);
     choice.nu = mu;
     choice.nv = mv;
-    choice.stop = "minimal (searched on every " + std::to_string(step) +
-                  "th point of each row, verified on all)";
+    choice.stop = minimal_on_sample(step);
   }
   return choice;
 }
