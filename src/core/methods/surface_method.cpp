@@ -23,6 +23,7 @@
 #include "minimax.h"
 #include "pair_search.h"
 #include "parallel.h"
+#include "row_rule_search.h"
 #include "rows_at_t.h"
 #include "sampled_search.h"
 #include "search_frame.h"
@@ -35,17 +36,6 @@
 namespace sfit::detail {
 
 namespace {
-
-// Minimax fits per rule in the search (each is a linear program per axis).
-constexpr int kLinfTries = 2;
-
-// A surface the search made: its rule, norm and where the search stopped.
-struct Candidate {
-  Parametrization rule = Parametrization::kUniform;
-  FitNorm norm = FitNorm::kL2;
-  int nu = 0, nv = 0;
-  std::string stop;
-};
 
 bool folds(const FitResult& f, const BoundingBox& box) {
   return f.report.fold > kFoldRelative * box.diagonal();
@@ -91,7 +81,7 @@ FitResult fit_surface_search(const FitSpec& spec) {
   const FewRows few(rows.size(), o);
   const FitOptions os = few.options(o);  // the search's problems
   std::optional<Candidate> best;
-  long tried = 0, over_budget = 0;
+  long tried = 0;
   // At T = 0 only interpolation holds, which the two stages give with the fewest control
   // points there are (one per point and row where the data is a grid).
   const bool interpolate = (o.tolerance.array() == 0).all();
@@ -131,8 +121,10 @@ FitResult fit_surface_search(const FitSpec& spec) {
   KeptSurfaces kept;                // no pair solved twice (search_frame.h)
   // The best row rule's parameters (u per point, v per row): the winner as the search kept it
   // needs no new problem and no new pass over every point to get them.
-  std::vector<double> best_u, best_v;
+  std::vector<double> best_u, best_v, rule_u, rule_v;
   const bool linf_may = o.norm != FitNorm::kL2 && !weights_matter(rows);
+  RowRuleSearch rs{fr,   few,     o,       os, seam_offsets, step, base ? &*base : nullptr,
+                   kept, monitor, linf_may};
   // Each rule's floor, made once (the geometric rule reads the chord rule's): its rows first
   // (row_floor_of(), nv at its least), its columns only where the rows do not decide (noise
   // near T on a grid: the rows' counts alone rule every row rule out).
@@ -214,94 +206,14 @@ FitResult fit_surface_search(const FitSpec& spec) {
       continue;
     }
     searched.push_back(rule);
-    kept.next_rule();
-    TensorProblem prob(fr.centred, spec_of(os, rule, fr.threads, seam_offsets));
-    const PairRange range{prob.min_u(), prob.max_u(), few.min_v(prob.min_v()),
-                          few.max_v(prob.max_v()), [&](int nu, int nv) {
-                            return prob.cost(nu, few.nv(nv)) <=
-                                   solve_budget(fr.centred.total_points());
-                          }};
-    PairOracle l2([&](int nu, int nv) {
-      // More control points than points leave the system singular.
-      if (static_cast<double>(nu) * few.nv(nv) > static_cast<double>(fr.centred.total_points()))
-        return PairVerdict{false, HUGE_VAL};
-      if (prob.cost(nu, few.nv(nv)) > solve_budget(fr.centred.total_points())) {
-        ++over_budget;
-        return PairVerdict{false, HUGE_VAL};
-      }
-      std::optional<Surface> ls = solve_pair(prob, FitNorm::kL2, nu, few.nv(nv), o.tolerance);
-      const bool refinable =
-          ls && linf_may && minimax_affordable(fr.centred.total_points(), nu, nv);
-      auto s = few.raise(refinable ? ls : std::move(ls));
-      const PairVerdict verdict =
-          s ? fr.judge(*s, prob.u_at(nu), prob.v_at(few.nv(nv))) : PairVerdict{false, HUGE_VAL};
-      if (verdict.holds) {
-        kept.keep_held({rule, FitNorm::kL2, nu, nv}, *s);
-      } else if (refinable && verdict.ratio <= kLinfReach) {
-        kept.keep_ls(nu, nv, *ls);
-      }
-      if (monitor) monitor->pair_tried(nu, nv, verdict.holds);
-      return verdict;
-    });
-    PairChoice choice;
-    if (step == 1) {
-      choice = search_pairs(range, bound, l2);
-    } else {
-      choice = search_on_sample(fr, few, prob, spec_of(os, rule, fr.threads, seam_offsets),
-                                o.tolerance, step, range, bound, l2, tried);
-    }
-    tried += l2.tried();
-    std::optional<Candidate> found;
-    if (choice.nu > 0) found = Candidate{rule, FitNorm::kL2, choice.nu, choice.nv, choice.stop};
-    if (o.norm != FitNorm::kL2 && !weights_matter(rows)) {
-      // Minimax from the least-squares choice (or the two-stage pair) downwards, at pairs
-      // where least squares missed T by a little (kAuto) or at all (kLinf).
-      PairOracle linf([&](int nu, int nv) {
-        auto s = few.raise(
-            solve_pair(prob, FitNorm::kLinf, nu, few.nv(nv), o.tolerance, kept.ls(nu, nv)));
-        const PairVerdict verdict =
-            s ? fr.judge(*s, prob.u_at(nu), prob.v_at(few.nv(nv))) : PairVerdict{false, HUGE_VAL};
-        if (verdict.holds) kept.keep_held({rule, FitNorm::kLinf, nu, nv}, *s);
-        if (monitor) monitor->pair_tried(nu, nv, verdict.holds);
-        return verdict;
-      });
-      int linf_left = kLinfTries;
-      auto worth = [&](int nu, int nv) {
-        if (!minimax_affordable(fr.centred.total_points(), nu, nv)) return false;
-        if (linf.known(nu, nv)) return true;
-        if (linf_left <= 0) return false;
-        if (o.norm == FitNorm::kLinf) return true;
-        const PairVerdict& v = l2(nu, nv);
-        if (v.holds || v.ratio > kLinfReach) return false;
-        --linf_left;
-        return true;
-      };
-      int nu = found ? found->nu : base ? base->surface.count_u : 0;
-      int nv = found ? found->nv : base ? base->surface.count_v : 0;
-      if (!found && (!base || base->report.parametrization != rule)) nu = 0;  // none of the rule
-      // kAuto solves at most kLinfTries minimax pairs per rule, so its descent takes at most
-      // that many steps: where even those cannot go below the best, it is not started.
-      const long reach = std::min({static_cast<long>(nu - kLinfTries) * nv,
-                                   static_cast<long>(nu) * (nv - kLinfTries),
-                                   static_cast<long>(nu - 1) * (nv - 1)});
-      if (o.norm == FitNorm::kAuto && reach >= bound) nu = 0;
-      if (nu > 0) {
-        const auto [mu, mv] = descend(nu, nv, range, linf, worth);
-        if (static_cast<long>(mu) * mv < static_cast<long>(nu) * nv) {
-          found = Candidate{rule, FitNorm::kLinf, mu, mv,
-                            o.norm == FitNorm::kLinf ? "minimal"
-                                                     : "minimal (minimax tried "
-                                                       "where least squares missed "
-                                                       "T by up to 25 %)"};
-        }
-      }
-      tried += linf.tried();
-    }
+    rs.tried = 0;
+    std::optional<Candidate> found = search_row_rule(rs, rule, bound, rule_u, rule_v);
+    tried += rs.tried;
     if (found && static_cast<long>(found->nu) * found->nv < bound) {
       bound = static_cast<long>(found->nu) * found->nv;
       best = found;
-      best_u = prob.u_at(found->nu);  // (its moments are cached: it was judged on all points)
-      best_v = prob.v_at(few.nv(found->nv));
+      best_u = std::move(rule_u);
+      best_v = std::move(rule_v);
     }
   }
   progress_advance(rules.size());
@@ -365,8 +277,9 @@ FitResult fit_surface_search(const FitSpec& spec) {
       b.report.stop_reason += "; the rows took all of T and the columns interpolate them (" +
                               std::to_string(base->surface.count_u) + " x " +
                               std::to_string(base->surface.count_v) + " with T/2 each)";
-    if (over_budget > 0)
-      b.report.stop_reason += " (" + std::to_string(over_budget) + " pairs over the solve budget)";
+    if (rs.over_budget > 0)
+      b.report.stop_reason +=
+          " (" + std::to_string(rs.over_budget) + " pairs over the solve budget)";
     // Never more control points than points unless T forces it (below_points.h).
     replace_below_points(fr, o, forced, b);
     b.report.seconds = now() - t0;
@@ -425,8 +338,8 @@ FitResult fit_surface_search(const FitSpec& spec) {
   r.pairs_tried = tried;
   r.rules_searched = std::move(searched);
   r.stop_reason = best->stop + deferred;
-  if (over_budget > 0)
-    r.stop_reason += " (" + std::to_string(over_budget) + " pairs over the solve budget)";
+  if (rs.over_budget > 0)
+    r.stop_reason += " (" + std::to_string(rs.over_budget) + " pairs over the solve budget)";
   if (base) {
     r.row_counts = std::move(base->report.row_counts);
     r.column_counts = std::move(base->report.column_counts);
