@@ -33,6 +33,19 @@ constexpr int kTopTries = 3;
 constexpr double kCorrectReach = 3;
 // New pairs the descent from the bisection's pair may solve.
 constexpr long kDescentTries = 6;
+// The fallback's work budget, in flops (about a second at the ~1e9 flops per second
+// measured): kWorkFloor, or kWorkPerPoint for each data point where that is more. Each
+// solve is charged its factorisation (ScatteredProblem::cost(), twice where the height
+// alone is calmed) and the pass over the points (kPointWork flops a point); each projection
+// of the parameters one more such pass. Where it ends the pairs not yet tried are not.
+constexpr double kWorkFloor = 1.5e10;
+constexpr double kWorkPerPoint = 2e4;
+constexpr double kPointWork = 2e3;
+
+struct Budget {
+  double limit = 0, spent = 0;
+  bool over() const { return spent >= limit; }
+};
 
 struct Tried {
   bool holds = false;  // T at every point, the guard and no fold
@@ -45,12 +58,19 @@ struct Tried {
 
 // One solve at the problem's fractions: the smoothness as the geometric search's, and lowered
 // where T was missed; every point judged (the exact worst ratio). `holds`: T at every point.
+// The work of one solve at (nu, nv) over `points` points (Budget).
+double solve_work(const ScatteredProblem& sp, int nu, int nv, bool calmed, std::size_t points) {
+  return (calmed ? 2 : 1) * sp.cost(nu, nv) + kPointWork * static_cast<double>(points);
+}
+
 Tried solve_once(const ScatteredProblem& sp, const Frame& fr, int nu, int nv,
-                 const std::optional<Point>& normal) {
+                 const std::optional<Point>& normal, Budget& budget) {
   Tried best;
   const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
+  const double work = solve_work(sp, nu, nv, normal.has_value(), fr.centred.total_points());
   for (double w = kSmoothing; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {
     Surface s;
+    budget.spent += work;
     if (!sp.solve(nu, nv, w, s, normal ? kCalm : 0.0, normal ? &*normal : nullptr)) break;
     DeviationCheck c;
     const PairVerdict verdict = fr.judge(s, u, v, &c, nullptr, false);
@@ -64,12 +84,14 @@ Tried solve_once(const ScatteredProblem& sp, const Frame& fr, int nu, int nv,
 // geometric search does) while the worst deviation falls and T is missed; then the rule's
 // guard (stays_near_where_covered()) and no fold.
 Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<double>& fu0,
-              const std::vector<double>& fv0, int nu, int nv, const std::optional<Point>& normal) {
+              const std::vector<double>& fv0, int nu, int nv, const std::optional<Point>& normal,
+              Budget& budget) {
   Tried best;
+  const double pass = kPointWork * static_cast<double>(fr.centred.total_points());
   std::vector<double> fu = fu0, fv = fv0;
   for (int round = 0; round <= kCorrectionRounds; ++round) {
     const ScatteredProblem sp(fr.centred, spec, std::move(fu), std::move(fv));
-    Tried t = solve_once(sp, fr, nu, nv, normal);
+    Tried t = solve_once(sp, fr, nu, nv, normal, budget);
     if (!(t.ratio < best.ratio)) break;
     t.fu = sp.fractions_u();
     t.fv = sp.fractions_v();
@@ -78,6 +100,7 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
     // A far miss is not corrected (no round was seen to bring it within T; each costs a solve).
     if (best.holds || round == kCorrectionRounds || best.ratio > kCorrectReach) break;
     std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
+    budget.spent += pass;
     project_parameters(best.s, fr.centred, u, v, kNewtonSteps, fr.threads);
     to_fractions(best.s, u, v, fu, fv);
   }
@@ -89,9 +112,25 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
              geometric_fold(s) <= kFoldRelative * fr.box.diagonal();
     };
     best.holds = guarded(best.s);
+    const double work = solve_work(sp, nu, nv, normal.has_value(), fr.centred.total_points());
+    // Where the smoothness was lowered to hold T and a guard failed (a span with few points
+    // swung out of the box, or the net folded): the weights in between, calmer first.
+    for (double w = kSmoothing * 0.1; !best.holds && w > 1.5 * best.smoothing; w *= 0.1) {
+      Surface s;
+      budget.spent += work;
+      if (!sp.solve(nu, nv, w, s, normal ? kCalm : 0.0, normal ? &*normal : nullptr)) break;
+      const PairVerdict verdict = fr.judge(s, u, v, nullptr, nullptr, false);
+      if (verdict.holds && guarded(s)) {
+        best.s = std::move(s);
+        best.ratio = verdict.ratio;
+        best.smoothing = w;
+        best.holds = true;
+      }
+    }
     // Where the height alone was calmed and a guard failed: the calm term on every axis.
     if (!best.holds && normal) {
       Surface s;
+      budget.spent += work;
       if (sp.solve(nu, nv, best.smoothing, s, kCalm)) {
         const PairVerdict verdict = fr.judge(s, u, v, nullptr, nullptr, false);
         if (verdict.holds && guarded(s)) {
@@ -177,7 +216,8 @@ bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv) {
   if (!st) return false;
   const ScatteredProblem sp(fr.centred, st->spec, st->f.u, st->f.v);
   if (nu < sp.min_u() || nv < sp.min_v()) return false;
-  return attempt(fr, st->spec, st->f.u, st->f.v, nu, nv, st->normal).holds;
+  Budget unlimited{HUGE_VAL};
+  return attempt(fr, st->spec, st->f.u, st->f.v, nu, nv, st->normal, unlimited).holds;
 }
 
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
@@ -197,12 +237,26 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   for (std::size_t j = 0; j < fr.centred.size(); ++j)
     longest = std::max(longest, fr.centred[j].size());
   const double a0 = std::clamp(static_cast<double>(longest) / fr.centred.size(), 1.0 / 16, 16.0);
+  // Then one control point across per row (the aspect 0 below): where each row has its own
+  // noise or wobble (hand-drawn sections) the net must follow every row on its own, and the
+  // rest of the product goes along the rows.
+  const int rows = static_cast<int>(fr.centred.size());
   std::vector<double> aspects{a0};
   if (std::abs(a0 - 1) > 0.25) aspects.push_back(1.0);
+  if (rows >= sp.min_v()) aspects.push_back(0.0);
+  // A bound that cuts off pairs that cannot hold better: more than two control points across
+  // per row are decided by the smoothness alone (two rows with 109 across took 3 s a pair).
+  const int most_v = std::max(sp.min_v(), 2 * rows);
   const long least = static_cast<long>(sp.min_u()) * sp.min_v();
+  Budget budget{std::max(kWorkFloor, kWorkPerPoint * static_cast<double>(points))};
   auto pair_of = [&](long product, double a) {
+    if (a == 0) {
+      const int nu = std::max(sp.min_u(), static_cast<int>(product / rows));
+      return std::pair{nu, rows};
+    }
     int nu = std::max(sp.min_u(), static_cast<int>(std::lround(std::sqrt(product * a))));
-    int nv = std::max(sp.min_v(), static_cast<int>(product / nu));
+    int nv = std::min(most_v, std::max(sp.min_v(), static_cast<int>(product / nu)));
+    if (nv == most_v) nu = std::max(sp.min_u(), static_cast<int>(product / nv));
     if (static_cast<long>(nu) * nv > product)
       nu = std::max(sp.min_u(), static_cast<int>(product / nv));
     return std::pair{nu, nv};
@@ -218,7 +272,8 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
       if (static_cast<long>(nu) * nv >= points || sp.cost(nu, nv) > kBelowPointsCost) continue;
       if (failed.count({nu, nv})) continue;  // tried before, and it failed
       if (auto h = held.find({nu, nv}); h != held.end()) return std::pair{h->first, h->second};
-      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal);
+      if (budget.over()) return std::nullopt;  // not tried: the budget ended
+      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget);
       ++tried;
       if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, t.holds);
       if (t.holds) {
@@ -243,19 +298,29 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   }
   const long top = hi;
   auto best = at(hi);
-  for (int k = 1; k < kTopTries && !best && guard_failed; ++k) {
+  for (int k = 1; k < kTopTries && !best && guard_failed && !budget.over(); ++k) {
     hi = static_cast<long>(0.8 * static_cast<double>(hi));
     if (hi <= least) break;
     best = at(hi);
   }
+  auto budget_note = [&] {
+    return "the fallback's work budget (" + std::to_string(static_cast<long>(budget.limit / 1e9)) +
+           "e9 flops) ended after " + std::to_string(tried) + " pairs";
+  };
   if (!best) {
     why = "no surface below the points held T with the calm term (" + std::to_string(tried) +
           " pairs tried up to " + std::to_string(top) + " control points" +
-          (top < points - 1 ? ", the largest affordable" : "") + ")";
+          (top < points - 1 ? ", the largest affordable" : "") +
+          (budget.over() ? "; " + budget_note() : std::string()) + ")";
     return std::nullopt;
   }
   long lo = least - 1;
+  bool cut = false;  // the budget ended before the bisection or the descent did
   for (int k = 0; k < kBisections && hi - lo > 1; ++k) {
+    if (budget.over()) {
+      cut = true;
+      break;
+    }
     const long mid = lo + (hi - lo) / 2;
     if (auto m = at(mid)) {
       hi = mid;
@@ -272,16 +337,17 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   long descent = 0;
   for (bool moved = true; moved;) {
     moved = false;
-    if (descent >= kDescentTries) break;
+    if (descent >= kDescentTries || cut) break;
     const auto [nu, nv] = best->first;
     for (const auto& [a, b] : {std::pair{nu - 1, nv}, std::pair{nu, nv - 1}}) {
       if (a < sp.min_u() || b < sp.min_v() || failed.count({a, b})) continue;
       auto h = held.find({a, b});
-      if (h == held.end() && descent >= kDescentTries) {
+      if (h == held.end() && (descent >= kDescentTries || budget.over())) {
         moved = true;  // not known: the budget ended before the pair was shown minimal
+        cut = cut || budget.over();
         break;
       }
-      Tried t = h != held.end() ? h->second : attempt(fr, spec, f->u, f->v, a, b, normal);
+      Tried t = h != held.end() ? h->second : attempt(fr, spec, f->u, f->v, a, b, normal, budget);
       if (h == held.end()) {
         ++tried;
         ++descent;
@@ -309,14 +375,16 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   g.tried = tried;
   const std::vector<char> cells = covered_spans(g.surface, g.u, g.v);
   const long covered = std::count(cells.begin(), cells.end(), 1);
-  g.stop = std::string(minimal ? "minimal below the points" : "below the points") +
-           ": the geometric rule with a calm net where the data is not "
-           "(data in " +
-           std::to_string(covered) + " of the " + std::to_string(cells.size()) +
-           " knot spans), nu x nv by bisection on the product, then one fewer along u or v "
-           "while it held" +
-           (minimal ? std::string() : " (stopped after " + std::to_string(kDescentTries) + ")") +
-           " (" + std::to_string(tried) + " pairs)";
+  g.stop =
+      std::string(minimal ? "minimal below the points" : "below the points") +
+      ": the geometric rule with a calm net where the data is not "
+      "(data in " +
+      std::to_string(covered) + " of the " + std::to_string(cells.size()) +
+      " knot spans), nu x nv by bisection on the product, then one fewer along u or v "
+      "while it held" +
+      (minimal || cut ? std::string() : " (stopped after " + std::to_string(kDescentTries) + ")") +
+      (cut ? " (stopped: " + budget_note() + ")" : std::string()) + " (" + std::to_string(tried) +
+      " pairs)";
   return g;
 }
 
