@@ -125,6 +125,28 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
         best.ratio = verdict.ratio;
         best.smoothing = w;
         best.holds = true;
+      } else if (!verdict.holds && verdict.ratio <= kSmoothingReach && guarded(s)) {
+        // Calm and unfolded but T missed narrowly: the parameters corrected on this surface
+        // and the pair solved again at this weight.
+        std::vector<double> cu = u, cv = v, gu, gv;
+        budget.spent += pass + work;
+        project_parameters(s, fr.centred, cu, cv, kNewtonSteps, fr.threads);
+        to_fractions(s, cu, cv, gu, gv);
+        const ScatteredProblem again(fr.centred, spec, std::move(gu), std::move(gv));
+        Surface c;
+        if (!again.solve(nu, nv, w, c, normal ? kCalm : 0.0, normal ? &*normal : nullptr)) continue;
+        const std::vector<double> au = again.u_at(nu), av = again.v_at(nv);
+        const PairVerdict cverdict = fr.judge(c, au, av, nullptr, nullptr, false);
+        if (cverdict.holds && stays_near_where_covered(c, au, av, fr.centred_box) &&
+            geometric_fold(c) <= kFoldRelative * fr.box.diagonal()) {
+          best.s = std::move(c);
+          best.ratio = cverdict.ratio;
+          best.smoothing = w;
+          best.fu = again.fractions_u();
+          best.fv = again.fractions_v();
+          best.corrections += 1;
+          best.holds = true;
+        }
       }
     }
     // Where the height alone was calmed and a guard failed: the calm term on every axis.
