@@ -120,8 +120,9 @@ TEST(BelowPoints, LidarCornerStripGetsFewerControlPointsThanPoints) {
 // 30 hand-drawn closed sections of a varying tube (40 ... 140 points each, each its own start
 // angle and uneven spacing), drawn by a shaky hand: a wobble of sigma 0.002 in radius, up to
 // above T at 1e-3 of the diagonal. The two stages' surface there has more control points than
-// points and folds. The default holds T, and either gets below the points without a fold or
-// says why not (measured: seed 1 below the points, 2 and 3 not; 4 and 5 below).
+// points and folds. The default gets below the points without a fold on every seed (seeds 2
+// and 3 kept the two stages' folded surface before the smoothness was raised between the
+// weights where the lowest let spans with few points swing out of the box).
 Rows shaky_closed_sections(std::uint32_t seed) {
   Uniform r(seed);
   Rows rows;
@@ -144,8 +145,7 @@ Rows shaky_closed_sections(std::uint32_t seed) {
   return rows;
 }
 
-TEST(BelowPoints, ShakyClosedSectionsFoldNoMoreOrSayWhy) {
-  int below = 0;
+TEST(BelowPoints, ShakyClosedSectionsGetBelowThePointsWithoutAFold) {
   for (std::uint32_t seed : {1u, 2u, 3u}) {
     const Rows rows = shaky_closed_sections(seed);
     const long points = static_cast<long>(rows.total_points());
@@ -161,16 +161,13 @@ TEST(BelowPoints, ShakyClosedSectionsFoldNoMoreOrSayWhy) {
     const Point dev = test::reference_deviation(f, rows);
     for (int a = 0; a < 3; ++a) EXPECT_LE(dev[a], o.tolerance[a] * (1 + 1e-9)) << "seed " << seed;
     const std::string& why = f.report.stop_reason;
-    if (why.rfind("minimal below the points", 0) == 0 || why.rfind("below the points", 0) == 0) {
-      ++below;
-      EXPECT_LT(size_of(f), points) << "seed " << seed;
-      expect_holds_unfolded(f, rows, o.tolerance);
-    } else {
-      EXPECT_NE(f.report.stop_reason.find("no surface below the points held T"), std::string::npos)
-          << "seed " << seed << ": " << f.report.stop_reason;
-    }
+    EXPECT_TRUE(why.rfind("minimal below the points", 0) == 0 ||
+                why.rfind("below the points", 0) == 0)
+        << "seed " << seed << ": " << why;
+    EXPECT_LT(size_of(f), points) << "seed " << seed;
+    EXPECT_EQ(f.report.fold, 0.0) << "seed " << seed;
+    expect_holds_unfolded(f, rows, o.tolerance);
   }
-  EXPECT_EQ(below, 1);  // golden: measured
 }
 
 // Ragged rows (10 ... 20 points) whose noise is ten times T: every row needs all its points,

@@ -29,7 +29,7 @@ if [ -f scripts/sanitizers/lsan.supp ]; then
 fi
 long='^(GeometricRule.DefaultBeatsTheRowRulesOnScanData'
 long+='|AdaptiveKnots.CorneredSectionsAndALocalBumpNeedAtLeastThirtyPercentFewer'
-long+='|LowerBound.TheLinearScanIsBounded|LowerBound.TwoLongRowsWithAnOutlierFit|RotatedSections.BigBladeCopiesKeepTheCountsAtFineTolerance'
+long+='|LowerBound.TheLinearScanIsBounded|RotatedSections.BigBladeCopiesKeepTheCountsAtFineTolerance'
 long+='|Tessellate.DefaultDensityHoldsTheChordalError|Tessellate.DefaultMeshKeepsTheTriangleBudget'
 long+='|Extremes.HundredThousandRowsOfThreePoints)$'
 ctest --test-dir "$dir" --output-on-failure -j "$jobs" -LE '^(browser|viewers)$' -E "$long"

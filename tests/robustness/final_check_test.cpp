@@ -244,6 +244,10 @@ TEST(LowerBound, TwoLongRowsWithAnOutlierFit) {
   o.tolerance = relative_tolerance(rows, 1e-3);
   const FitResult f = fit_surface(rows, o);
   EXPECT_TRUE(f.report.within_tolerance);
+  // Below the points (the two stages need more): one control point across per row at most
+  // twice over, so the fallback's pairs stay cheap (docs/method.md 7.12).
+  EXPECT_LT(static_cast<long>(f.surface.count_u) * f.surface.count_v, 2L * n);
+  EXPECT_LE(f.surface.count_v, 4);
 }
 
 }  // namespace

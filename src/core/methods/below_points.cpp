@@ -9,6 +9,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "below_points_pair.h"
 #include "fit_frame.h"
 #include "fit_monitor.h"
 #include "geometric_params.h"
@@ -29,81 +30,12 @@ constexpr int kBisections = 8;
 // before giving up: a guard (the fold, the calm) can fail at one pair and pass at a smaller.
 // Only where the top held T at every point but failed the guard or folded.
 constexpr int kTopTries = 3;
-// The parameters are corrected where the worst point misses T by at most this factor.
-constexpr double kCorrectReach = 3;
+// The fallback's work budget (Budget), in flops: kWorkFloor, or kWorkPerPoint for each data
+// point where that is more (a few seconds; about what the search before it costs on such data).
+constexpr double kWorkFloor = 1.5e10;
+constexpr double kWorkPerPoint = 2e4;
 // New pairs the descent from the bisection's pair may solve.
 constexpr long kDescentTries = 6;
-
-struct Tried {
-  bool holds = false;  // T at every point, the guard and no fold
-  double ratio = HUGE_VAL;
-  Surface s;
-  double smoothing = 0;
-  std::vector<double> fu, fv;  // the points' fractions the surface was made at
-  int corrections = 0;
-};
-
-// One solve at the problem's fractions: the smoothness as the geometric search's, and lowered
-// where T was missed; every point judged (the exact worst ratio). `holds`: T at every point.
-Tried solve_once(const ScatteredProblem& sp, const Frame& fr, int nu, int nv,
-                 const std::optional<Point>& normal) {
-  Tried best;
-  const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
-  for (double w = kSmoothing; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {
-    Surface s;
-    if (!sp.solve(nu, nv, w, s, normal ? kCalm : 0.0, normal ? &*normal : nullptr)) break;
-    DeviationCheck c;
-    const PairVerdict verdict = fr.judge(s, u, v, &c, nullptr, false);
-    if (verdict.ratio < best.ratio) best = Tried{verdict.holds, verdict.ratio, std::move(s), w};
-    if (verdict.holds) break;
-  }
-  return best;
-}
-
-// One pair: from the base surface's fractions, corrected by projection onto the fit (as the
-// geometric search does) while the worst deviation falls and T is missed; then the rule's
-// guard (stays_near_where_covered()) and no fold.
-Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<double>& fu0,
-              const std::vector<double>& fv0, int nu, int nv, const std::optional<Point>& normal) {
-  Tried best;
-  std::vector<double> fu = fu0, fv = fv0;
-  for (int round = 0; round <= kCorrectionRounds; ++round) {
-    const ScatteredProblem sp(fr.centred, spec, std::move(fu), std::move(fv));
-    Tried t = solve_once(sp, fr, nu, nv, normal);
-    if (!(t.ratio < best.ratio)) break;
-    t.fu = sp.fractions_u();
-    t.fv = sp.fractions_v();
-    t.corrections = round;
-    best = std::move(t);
-    // A far miss is not corrected (no round was seen to bring it within T; each costs a solve).
-    if (best.holds || round == kCorrectionRounds || best.ratio > kCorrectReach) break;
-    std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
-    project_parameters(best.s, fr.centred, u, v, kNewtonSteps, fr.threads);
-    to_fractions(best.s, u, v, fu, fv);
-  }
-  if (best.holds) {
-    const ScatteredProblem sp(fr.centred, spec, best.fu, best.fv);
-    const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
-    auto guarded = [&](const Surface& s) {
-      return stays_near_where_covered(s, u, v, fr.centred_box) &&
-             geometric_fold(s) <= kFoldRelative * fr.box.diagonal();
-    };
-    best.holds = guarded(best.s);
-    // Where the height alone was calmed and a guard failed: the calm term on every axis.
-    if (!best.holds && normal) {
-      Surface s;
-      if (sp.solve(nu, nv, best.smoothing, s, kCalm)) {
-        const PairVerdict verdict = fr.judge(s, u, v, nullptr, nullptr, false);
-        if (verdict.holds && guarded(s)) {
-          best.s = std::move(s);
-          best.ratio = verdict.ratio;
-          best.holds = true;
-        }
-      }
-    }
-  }
-  return best;
-}
 
 }  // namespace
 
@@ -179,7 +111,8 @@ bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv) {
   if (!st) return false;
   const ScatteredProblem sp(fr.centred, st->spec, st->f.u, st->f.v);
   if (nu < sp.min_u() || nv < sp.min_v()) return false;
-  return attempt(fr, st->spec, st->f.u, st->f.v, nu, nv, st->normal).holds;
+  Budget unlimited{HUGE_VAL};
+  return attempt(fr, st->spec, st->f.u, st->f.v, nu, nv, st->normal, unlimited).holds;
 }
 
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
@@ -199,12 +132,26 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   for (std::size_t j = 0; j < fr.centred.size(); ++j)
     longest = std::max(longest, fr.centred[j].size());
   const double a0 = std::clamp(static_cast<double>(longest) / fr.centred.size(), 1.0 / 16, 16.0);
+  // Then one control point across per row (the aspect 0 below): where each row has its own
+  // noise or wobble (hand-drawn sections) the net must follow every row on its own, and the
+  // rest of the product goes along the rows.
+  const int rows = static_cast<int>(fr.centred.size());
   std::vector<double> aspects{a0};
   if (std::abs(a0 - 1) > 0.25) aspects.push_back(1.0);
+  if (rows >= sp.min_v()) aspects.push_back(0.0);
+  // A bound that cuts off pairs that cannot hold better: more than two control points across
+  // per row are decided by the smoothness alone (two rows with 109 across took 3 s a pair).
+  const int most_v = std::max(sp.min_v(), 2 * rows);
   const long least = static_cast<long>(sp.min_u()) * sp.min_v();
+  Budget budget{std::max(kWorkFloor, kWorkPerPoint * static_cast<double>(points))};
   auto pair_of = [&](long product, double a) {
+    if (a == 0) {
+      const int nu = std::max(sp.min_u(), static_cast<int>(product / rows));
+      return std::pair{nu, rows};
+    }
     int nu = std::max(sp.min_u(), static_cast<int>(std::lround(std::sqrt(product * a))));
-    int nv = std::max(sp.min_v(), static_cast<int>(product / nu));
+    int nv = std::min(most_v, std::max(sp.min_v(), static_cast<int>(product / nu)));
+    if (nv == most_v) nu = std::max(sp.min_u(), static_cast<int>(product / nv));
     if (static_cast<long>(nu) * nv > product)
       nu = std::max(sp.min_u(), static_cast<int>(product / nv));
     return std::pair{nu, nv};
@@ -220,7 +167,8 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
       if (static_cast<long>(nu) * nv >= points || sp.cost(nu, nv) > kBelowPointsCost) continue;
       if (failed.count({nu, nv})) continue;  // tried before, and it failed
       if (auto h = held.find({nu, nv}); h != held.end()) return std::pair{h->first, h->second};
-      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal);
+      if (budget.over()) return std::nullopt;  // not tried: the budget ended
+      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget);
       ++tried;
       if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, t.holds);
       if (t.holds) {
@@ -245,19 +193,29 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   }
   const long top = hi;
   auto best = at(hi);
-  for (int k = 1; k < kTopTries && !best && guard_failed; ++k) {
+  for (int k = 1; k < kTopTries && !best && guard_failed && !budget.over(); ++k) {
     hi = static_cast<long>(0.8 * static_cast<double>(hi));
     if (hi <= least) break;
     best = at(hi);
   }
+  auto budget_note = [&] {
+    return "the fallback's work budget (" + std::to_string(static_cast<long>(budget.limit / 1e9)) +
+           "e9 flops) ended after " + std::to_string(tried) + " pairs";
+  };
   if (!best) {
     why = "no surface below the points held T with the calm term (" + std::to_string(tried) +
           " pairs tried up to " + std::to_string(top) + " control points" +
-          (top < points - 1 ? ", the largest affordable" : "") + ")";
+          (top < points - 1 ? ", the largest affordable" : "") +
+          (budget.over() ? "; " + budget_note() : std::string()) + ")";
     return std::nullopt;
   }
   long lo = least - 1;
+  bool cut = false;  // the budget ended before the bisection or the descent did
   for (int k = 0; k < kBisections && hi - lo > 1; ++k) {
+    if (budget.over()) {
+      cut = true;
+      break;
+    }
     const long mid = lo + (hi - lo) / 2;
     if (auto m = at(mid)) {
       hi = mid;
@@ -274,16 +232,17 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   long descent = 0;
   for (bool moved = true; moved;) {
     moved = false;
-    if (descent >= kDescentTries) break;
+    if (descent >= kDescentTries || cut) break;
     const auto [nu, nv] = best->first;
     for (const auto& [a, b] : {std::pair{nu - 1, nv}, std::pair{nu, nv - 1}}) {
       if (a < sp.min_u() || b < sp.min_v() || failed.count({a, b})) continue;
       auto h = held.find({a, b});
-      if (h == held.end() && descent >= kDescentTries) {
+      if (h == held.end() && (descent >= kDescentTries || budget.over())) {
         moved = true;  // not known: the budget ended before the pair was shown minimal
+        cut = cut || budget.over();
         break;
       }
-      Tried t = h != held.end() ? h->second : attempt(fr, spec, f->u, f->v, a, b, normal);
+      Tried t = h != held.end() ? h->second : attempt(fr, spec, f->u, f->v, a, b, normal, budget);
       if (h == held.end()) {
         ++tried;
         ++descent;
@@ -311,14 +270,16 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   g.tried = tried;
   const std::vector<char> cells = covered_spans(g.surface, g.u, g.v);
   const long covered = std::count(cells.begin(), cells.end(), 1);
-  g.stop = std::string(minimal ? "minimal below the points" : "below the points") +
-           ": the geometric rule with a calm net where the data is not "
-           "(data in " +
-           std::to_string(covered) + " of the " + std::to_string(cells.size()) +
-           " knot spans), nu x nv by bisection on the product, then one fewer along u or v "
-           "while it held" +
-           (minimal ? std::string() : " (stopped after " + std::to_string(kDescentTries) + ")") +
-           " (" + std::to_string(tried) + " pairs)";
+  g.stop =
+      std::string(minimal ? "minimal below the points" : "below the points") +
+      ": the geometric rule with a calm net where the data is not "
+      "(data in " +
+      std::to_string(covered) + " of the " + std::to_string(cells.size()) +
+      " knot spans), nu x nv by bisection on the product, then one fewer along u or v "
+      "while it held" +
+      (minimal || cut ? std::string() : " (stopped after " + std::to_string(kDescentTries) + ")") +
+      (cut ? " (stopped: " + budget_note() + ")" : std::string()) + " (" + std::to_string(tried) +
+      " pairs)";
   return g;
 }
 

@@ -1,0 +1,50 @@
+// One pair nu x nv of the fallback below the points (docs/method.md 7.12, below_points.h):
+// solved from the base surface's fractions with the calm term, its parameters corrected by
+// projection, judged at every point, by the geometric rule's guard and for a fold; and the
+// work it costs, charged to the fallback's budget. Private to the surface method.
+#pragma once
+
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "below_points.h"
+#include "geometric_search.h"
+#include "scattered_lsq.h"
+#include "search_frame.h"
+
+namespace sfit::detail {
+
+/// Flops charged for one pass over a point (the data term's sums, a judgement, a projection).
+inline constexpr double kPointWork = 2e3;
+
+/// The fallback's work, in flops: each solve is charged its factorisation
+/// (ScatteredProblem::cost(), twice where the height alone is calmed) and one pass over the
+/// points, each projection of the parameters one more pass. Where it is over, no new pair is
+/// tried.
+struct Budget {
+  double limit = 0, spent = 0;
+  bool over() const { return spent >= limit; }
+};
+
+/// A pair tried.
+struct Tried {
+  bool holds = false;  // T at every point, the guard and no fold
+  double ratio = HUGE_VAL;
+  Surface s;
+  double smoothing = 0;
+  std::vector<double> fu, fv;  // the points' fractions the surface was made at
+  int corrections = 0;
+};
+
+/// One pair: from the base surface's fractions (fu0, fv0), corrected by projection onto the fit
+/// (as the geometric search does) while the worst deviation falls and T is missed by at most
+/// 3x; then the rule's guard (stays_near_where_covered()) and no fold. Where T held only at the
+/// lowest smoothness and a guard failed, the weights in between, calmer first (one that is calm
+/// and unfolded but misses T by at most kSmoothingReach gets one more correction round at that
+/// weight). `normal`: an open sheet's height direction, calmed alone first.
+Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<double>& fu0,
+              const std::vector<double>& fv0, int nu, int nv, const std::optional<Point>& normal,
+              Budget& budget);
+
+}  // namespace sfit::detail
