@@ -68,6 +68,35 @@ TEST(Rerepresent, TargetParametersAreUsed) {
     EXPECT_LE((r.curve.evaluate(target[k]) - pts[k]).cwiseAbs().maxCoeff(), 0.02) << k;
 }
 
+TEST(Rerepresent, RepairOfALongCurveHoldsTheBound) {
+  // The columns' case at the length of 5,000 rows of a few points: a slightly rough column
+  // interpolated (one control point per row), re-represented on 3 more at the paper's
+  // parameters. Above 4096 control points the repair rounds add their equations in the order
+  // of their first unknown (linear cost); the bound must hold at every point all the same.
+  const int n = 5000;
+  std::vector<Point> pts;
+  unsigned state = 12345;
+  auto noise = [&] {
+    state = state * 1103515245u + 12345u;
+    return static_cast<double>((state >> 8) & 0xffff) / 65536.0 - 0.5;
+  };
+  for (int k = 0; k < n; ++k) {
+    const double s = static_cast<double>(k) / (n - 1);
+    pts.emplace_back(s, std::sin(9 * s) + 1e-4 * noise(), 1e-4 * noise());
+  }
+  const CurveFit f = fit_curve(pts, {3, false, Point::Zero(), CountSearch::kFast});
+  ASSERT_EQ(f.curve.count(), n);
+  const int count = n + 3;
+  const Point bound = Point::Constant(1e-9);
+  const std::vector<double> target = paper_parameters(3, count, false, n);
+  const Rerepresentation r = rerepresent(f, pts, 3, count, false, bound, target);
+  ASSERT_TRUE(r.holds);
+  EXPECT_GT(r.repair_rounds, 0);
+  EXPECT_EQ(r.parameters, target);
+  for (int k = 0; k < n; ++k)
+    EXPECT_LE((r.curve.evaluate(target[k]) - pts[k]).cwiseAbs().maxCoeff(), 1e-9) << k;
+}
+
 TEST(Rerepresent, PoleBecomesCoincidentControlPoints) {
   const std::vector<Point> pts = {Point(4, 5, 6)};
   const CurveFit f = fit_curve(pts, {3, true, Point::Zero(), CountSearch::kFast});

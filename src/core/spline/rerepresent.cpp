@@ -126,6 +126,17 @@ std::vector<double> arc_length_samples(const Curve& old, const std::vector<doubl
   return out;
 }
 
+// The repair rounds' equations (weighted data points, then the samples) go into the banded QR
+// heaviest first up to this many control points, in the order of their first unknown above it.
+// Row-by-row Givens QR keeps an equation's fill-in within the band only while the rows of R
+// after its first unknown are still empty; an equation added behind rows that exist further on
+// rotates against each of them until its fill-in dies out. Heaviest first (weights in no
+// relation to position) therefore costs up to O(count) per equation, O(count^2) a round: a
+// column of 20,000 rows of 2-3 points spent 55 % of its fit there (thousands of rotations per
+// equation). The position order costs O(width^2) per equation but rounds differently, so below
+// the threshold the heaviest-first order (and every recorded result) is kept.
+constexpr int kHeaviestFirstUpTo = 4096;
+
 }  // namespace
 
 std::string_view to_string(Resampling r) {
@@ -221,15 +232,40 @@ Rerepresentation rerepresent(const CurveFit& fit, std::span<const Point> data, i
       } else {
         lsq.emplace(count, w, periodic);
       }
-      // Heaviest equations first (Powell and Reid): the weighted data points, then the samples.
       order.clear();
       for (std::size_t k = 0; k < n_data; ++k)
         if (weight[k] > 0) order.push_back(k);
-      std::sort(order.begin(), order.end(),
-                [&](std::size_t a, std::size_t b) { return weight[a] > weight[b]; });
-      for (std::size_t k : order) lsq->add(dfirst[k], &db[k * w], data[k], weight[k]);
-      for (int l = 0; l < count; ++l)
-        lsq->add(gfirst[l], &gb[static_cast<std::size_t>(l) * w], samples[l]);
+      if (count <= kHeaviestFirstUpTo) {
+        // Heaviest equations first (Powell and Reid): the weighted data points, then the
+        // samples.
+        std::sort(order.begin(), order.end(),
+                  [&](std::size_t a, std::size_t b) { return weight[a] > weight[b]; });
+        for (std::size_t k : order) lsq->add(dfirst[k], &db[k * w], data[k], weight[k]);
+        for (int l = 0; l < count; ++l)
+          lsq->add(gfirst[l], &gb[static_cast<std::size_t>(l) * w], samples[l]);
+      } else {
+        // Long curves: the same equations in the order of their first unknown, the heaviest
+        // first among equations on the same one, so that every equation's fill-in stays
+        // within the band (see kHeaviestFirstUpTo).
+        for (int l = 0; l < count; ++l) order.push_back(n_data + static_cast<std::size_t>(l));
+        auto first_of = [&](std::size_t e) { return e < n_data ? dfirst[e] : gfirst[e - n_data]; };
+        auto weight_of = [&](std::size_t e) { return e < n_data ? weight[e] : 1.0; };
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+          const int fa = first_of(a), fb = first_of(b);
+          if (fa != fb) return fa < fb;
+          const double wa = weight_of(a), wb = weight_of(b);
+          if (wa != wb) return wa > wb;
+          return a < b;
+        });
+        for (std::size_t e : order) {
+          if (e < n_data) {
+            lsq->add(dfirst[e], &db[e * w], data[e], weight[e]);
+          } else {
+            const std::size_t l = e - n_data;
+            lsq->add(gfirst[l], &gb[l * w], samples[l]);
+          }
+        }
+      }
       if (!lsq->solve(out.curve.control)) {
         out.holds = false;
         return out;
