@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Inputs nobody tuned for: generated cases the CLI's default must survive, checked independently.
+"""Inputs nobody tuned for: generated cases the CLI's default must survive, checked independently
+(the results: docs/adversarial.md).
 
 Each case is made here from a formula and a seeded random generator, of kinds that
 bench/scan_cases.py does not make: rows in reverse or alternating order, repeated points,
@@ -26,7 +27,8 @@ Each case runs `CLI fit CASE.rows` (default method, a timeout) and is checked:
 - the report's fold measure is 0, its `within_tolerance` true;
 - the run's wall time (flagged "slow" above --slow seconds, "hang" at the timeout).
 
-    bench/adversarial.py build/apps/sfit/sfit [--seed N] [--only NAME] [--timeout S]
+    bench/adversarial.py build/apps/sfit/sfit [--seed N] [--only NAME] [--timeout S] [--slow S]
+                         [--keep DIR]
 
 Prints one line per case and then the table of failures (empty: every check held).
 """
@@ -479,6 +481,9 @@ def run_case(cli, name, make, opts, expect, tweak, seed, tmp, timeout, formats):
         big = np.abs(pts).max() > 1e6  # STL's float32 is refused there (docs/errors.md, 6)
         for ext in (("obj",) if big else ("stl", "obj")) + (("step",) if "step" in formats else ()):
             extra.append(os.path.join(tmp, name + "." + ext))
+    for o in outs + [os.path.join(tmp, name + "." + e) for e in ("stl", "obj", "step")]:
+        if os.path.exists(o):  # a run before in a kept folder: its files are not this run's
+            os.remove(o)
     sentinel = b"existing file, must stay\n"
     if expect == "input":  # an existing file at every output path must stay untouched
         for o in outs:

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Every relative link of README.md and docs/*.md names a file of the repository (and, with
-#anchor, a heading of that file), so a reader who clones the project can follow it.
+"""Every relative link of README.md and docs/*.md names a file the repository tracks (git
+ls-files; and, with #anchor, a heading of that file), so a reader who clones the project can
+follow it: not a file beside the clone, nor one only a build makes.
 
     scripts/check_links.py [REPO]      exit 0 when all hold, 1 with one line per broken link
 """
@@ -8,6 +9,7 @@
 import glob
 import os
 import re
+import subprocess
 import sys
 
 root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), ".."))
@@ -17,12 +19,25 @@ LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)\)")
 def anchors(path):
     """GitHub's heading anchors: lower case, punctuation dropped, spaces as hyphens."""
     out = set()
+    in_code = False
     for line in open(path, encoding="utf-8"):
-        m = re.match(r"#+\s+(.*)", line)
+        if line.lstrip().startswith("```"):
+            in_code = not in_code
+        m = None if in_code else re.match(r"#+\s+(.*)", line)
         if m:
             a = re.sub(r"[^\w\- ]", "", m.group(1).strip().lower()).replace(" ", "-")
             out.add(a)
     return out
+
+
+tracked = [f for f in subprocess.run(["git", "-C", root, "ls-files"], capture_output=True,
+                                     text=True, check=True).stdout.split("\n") if f]
+
+
+def is_tracked(full):
+    """A tracked file, or a folder holding one."""
+    rel = os.path.relpath(full, root)
+    return rel == "." or any(t == rel or t.startswith(rel + "/") for t in tracked)
 
 
 bad = []
@@ -40,8 +55,8 @@ for f in files:
             path, _, anchor = target.partition("#")
             full = os.path.normpath(os.path.join(os.path.dirname(f), path)) if path else f
             rel = os.path.relpath(f, root)
-            if not os.path.exists(full):
-                bad.append(f"{rel}:{n}: {target}: no such file")
+            if not os.path.exists(full) or not is_tracked(full):
+                bad.append(f"{rel}:{n}: {target}: no such file in the repository")
             elif anchor and full.endswith(".md") and anchor not in anchors(full):
                 bad.append(f"{rel}:{n}: {target}: no such heading")
 for b in bad:

@@ -120,9 +120,10 @@ TEST(BelowPoints, LidarCornerStripGetsFewerControlPointsThanPoints) {
 // 30 hand-drawn closed sections of a varying tube (40 ... 140 points each, each its own start
 // angle and uneven spacing), drawn by a shaky hand: a wobble of sigma 0.002 in radius, up to
 // above T at 1e-3 of the diagonal. The two stages' surface there has more control points than
-// points and folds. The default gets below the points without a fold on every seed (seeds 2
-// and 3 kept the two stages' folded surface before the smoothness was raised between the
-// weights where the lowest let spans with few points swing out of the box).
+// points and folds. The default gets below the points without a fold on seeds 1, 2 and 3
+// here (and on the 16 seeds measured with bench/scan_cases.py --seed). Seeds 2 and 3 kept the
+// two stages' folded surface before the smoothness was raised between the weights where the
+// lowest let spans with few points swing out of the box.
 Rows shaky_closed_sections(std::uint32_t seed) {
   Uniform r(seed);
   Rows rows;
@@ -240,15 +241,25 @@ Rows two_point_rows(int sheet) {
 }
 
 TEST(BelowPoints, RowsShorterThanTheDegreeDoNotForceInterpolation) {
-  for (int sheet : {0}) {
+  for (int sheet : {0, 1}) {
     const Rows rows = two_point_rows(sheet);
     const long points = static_cast<long>(rows.total_points());
     const FitOptions o = at(rows, 1e-3);
     const detail::Centring c = detail::centre_rows(rows, 1);
     std::string why;
     EXPECT_FALSE(detail::t_forces_interpolation(c.centred, o, c.roundoff, why)) << why;
+    EXPECT_NE(why.find("at most degree + 1 points"), std::string::npos) << why;
     const FitResult f = fit_surface(rows, o);
-    EXPECT_LE(size_of(f), points) << "sheet " << sheet << ": " << f.report.stop_reason;
+    if (sheet == 0) {
+      EXPECT_LE(size_of(f), points) << f.report.stop_reason;
+    } else if (size_of(f) > points) {
+      // The plain wave: where it stays above the points, the report says why, and why the
+      // rows cannot tell whether T forces it.
+      EXPECT_NE(f.report.stop_reason.find("no surface below the points held"), std::string::npos)
+          << f.report.stop_reason;
+      EXPECT_NE(f.report.stop_reason.find("at most degree + 1 points"), std::string::npos)
+          << f.report.stop_reason;
+    }
     EXPECT_EQ(f.report.stop_reason.find("T forces interpolation"), std::string::npos)
         << f.report.stop_reason;
     expect_holds_unfolded(f, rows, o.tolerance);

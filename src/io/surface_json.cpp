@@ -202,13 +202,12 @@ void dump_surface_json(std::ostream& out, const Surface& s, const FitReport* rep
   if (report) rest["report"] = report_to_json(*report);
   const std::string tail = rest.dump();
   out << "{\"control_points\":[";
-  nlohmann::detail::serializer<json> ser(nlohmann::detail::output_adapter<char>(out), ' ');
   const int fu = s.full_count_u(), fv = s.full_count_v();
   for (int i = 0; i < fu; ++i) {
     json row = json::array();
     for (int l = 0; l < fv; ++l) row.push_back(point(s.full_at(i, l)));
     if (i > 0) out << ',';
-    ser.dump(row, false, false, 0);
+    out << row.dump();
   }
   out << "]," << std::string_view(tail).substr(1) << '\n';
 }

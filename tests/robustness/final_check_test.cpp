@@ -244,10 +244,16 @@ TEST(LowerBound, TwoLongRowsWithAnOutlierFit) {
   o.tolerance = relative_tolerance(rows, 1e-3);
   const FitResult f = fit_surface(rows, o);
   EXPECT_TRUE(f.report.within_tolerance);
+  // T at every point by the independent evaluator (at the points' own parameters), no fold.
+  const Point dev = test::reference_deviation(f, rows);
+  for (int a = 0; a < 3; ++a) EXPECT_LE(dev[a], o.tolerance[a] * (1 + 1e-9)) << "axis " << a;
+  EXPECT_EQ(f.report.fold, 0.0);
   // Below the points (the two stages need more): one control point across per row at most
   // twice over, so the fallback's pairs stay cheap (docs/method.md 7.12).
   EXPECT_LT(static_cast<long>(f.surface.count_u) * f.surface.count_v, 2L * n);
   EXPECT_LE(f.surface.count_v, 4);
+  EXPECT_NE(f.report.stop_reason.find("below the points"), std::string::npos)
+      << f.report.stop_reason;
 }
 
 }  // namespace

@@ -48,7 +48,12 @@ bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double rou
   for (std::size_t i = 0; i < centred.size(); ++i)
     if (centred[i].size() >= static_cast<std::size_t>(o.degree_u) + 2) longer.push_back(i);
   const std::size_t M = longer.size(), picks = std::min<std::size_t>(8, M);
-  if (picks == 0) return false;
+  if (picks == 0) {
+    why =
+        "every row has at most degree + 1 points, which any count interpolates: the rows "
+        "alone say nothing about noise";
+    return false;
+  }
   Point bound;
   for (int a = 0; a < 3; ++a) bound[a] = o.tolerance[a] > 0 ? o.tolerance[a] : roundoff;
   std::vector<long> need(picks, 0), have(picks, 0);
@@ -318,7 +323,7 @@ bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, Fit
   if (!g) {
     r.report.stop_reason += (above ? "; more control points than data points: "
                                    : "; it folds, and no unfolded surface below the points: ") +
-                            why + "; " + rows_need;
+                            why + (rows_need.empty() ? "" : "; " + rows_need);
     return false;
   }
   DeviationCheck c;

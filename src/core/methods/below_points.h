@@ -21,19 +21,23 @@ inline constexpr double kCalm = 1e-2;
 /// are not tried.
 inline constexpr double kBelowPointsCost = 1e9;
 
-/// Whether T forces (near) interpolation: rows spread over the data (up to 8), each fitted
-/// alone as a curve at T (chord-length positions, count_floor.h's fit), need together at
-/// least 90 % of their points. `why` gets the numbers ("the rows fitted alone at T need
-/// a of their b points").
+/// Whether T forces (near) interpolation: rows spread over the data (up to 8 of those with more
+/// than degree + 1 points: shorter ones are interpolated at any T), each fitted alone as a curve
+/// at T (chord-length positions, count_floor.h's fit), need together at least 90 % of their
+/// points. `why` gets the numbers ("the rows fitted alone at T need a of their b points"), or
+/// says that no row is long enough to tell (then false).
 bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
                             std::string& why);
 
 /// A surface of the geometric rule with fewer control points than `points` (the data's): nu x
 /// nv by a bisection on the product (the ratio nu / nv from the data: the longest row's points
-/// over the rows, and 1), then one fewer along u or v while either holds, each pair solved with the
-/// calm term, judged at every point (T per axis), by the geometric rule's guard
-/// (stays_near_where_covered()) and unfolded (geometric_fold()). nullopt where none held; `why`
-/// says what was tried.
+/// over the rows, then 1, then one control point across per row; never more than two across per
+/// row), then one fewer along u or v while either holds, each pair solved with the calm term
+/// (smoothness weights in between where the lowest one fails a guard), judged at every point
+/// (T per axis), by the geometric rule's guard (stays_near_where_covered()) and unfolded
+/// (geometric_fold()). Within a work budget in flops tied to the points: where it or the
+/// descent's cap ends first, the result's stop reason says "below the points" without
+/// "minimal". nullopt where none held; `why` says what was tried.
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
                                              std::string& why);
 

@@ -232,6 +232,7 @@ FitResult SurfaceFitter::fit_with_rule(const Rows& rows) {
 FitResult SurfaceFitter::update_aligned(const Rows& rows, const std::vector<std::size_t>& changed,
                                         const Centring& c) {
   const double t0 = now();
+  const EndOfFit end{*this};
   // The fit in full, as the driver's fit_aligned() of these rows would run it.
   const auto in_full = [&] { return fit_aligned(rows, {}, &c); };
   if (!valid_ || !keep_state_ || rows.size() != centred_rows_ || c.box.min != box_.min ||

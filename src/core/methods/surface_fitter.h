@@ -44,12 +44,10 @@ class SurfaceFitter {
   /// given, their centring (of these very rows: the driver's); no final check (the driver's).
   FitResult fit_aligned(const Rows& rows, std::span<const double> seam_offsets,
                         const Centring* centring = nullptr) {
+    const EndOfFit end{*this};
     row_seam_offsets_.assign(seam_offsets.begin(), seam_offsets.end());
     given_ = centring;
-    FitResult r = fit_given(rows);
-    row_seam_offsets_.clear();
-    given_ = nullptr;
-    return r;
+    return fit_given(rows);
   }
   /// false: a one-shot fit (no update_aligned() follows): the row stage is not kept for
   /// updates, and the row fits are released before the transverse stage (less memory).
@@ -89,7 +87,17 @@ class SurfaceFitter {
   double roundoff_ = 0;
   Rows own_centred_;
   const Rows* centred_ = nullptr;  // valid during a fit or an update only
-  std::size_t centred_rows_ = 0;   // the last fit's rows (update_aligned() compares)
+  // Drops what a fit or an update borrowed from its caller (the seams, the driver's centring
+  // and centred rows) when it returns or throws, so nothing dangles after it.
+  struct EndOfFit {
+    SurfaceFitter& f;
+    ~EndOfFit() {
+      f.row_seam_offsets_.clear();
+      f.given_ = nullptr;
+      f.centred_ = nullptr;
+    }
+  };
+  std::size_t centred_rows_ = 0;  // the last fit's rows (update_aligned() compares)
   // State of the first (untightened) attempt of the last fit, reused by update().
   bool valid_ = false;
   Point bound_ = Point::Zero();
