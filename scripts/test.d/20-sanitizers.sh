@@ -31,6 +31,6 @@ long='^(GeometricRule.DefaultBeatsTheRowRulesOnScanData'
 long+='|AdaptiveKnots.CorneredSectionsAndALocalBumpNeedAtLeastThirtyPercentFewer'
 long+='|LowerBound.TheLinearScanIsBounded|RotatedSections.BigBladeCopiesKeepTheCountsAtFineTolerance'
 long+='|Tessellate.DefaultDensityHoldsTheChordalError|Tessellate.DefaultMeshKeepsTheTriangleBudget'
-long+='|Extremes.HundredThousandRowsOfThreePoints)$'
+long+='|Extremes.HundredThousandRowsOfThreePoints|BelowPoints.ShakyClosedSectionsGetBelowThePointsWithoutAFold)$'
 ctest --test-dir "$dir" --output-on-failure -j "$jobs" -LE '^(browser|viewers)$' -E "$long"
 echo "sanitizers: build $((built - start)) s, tests $(($(date +%s) - built)) s"
