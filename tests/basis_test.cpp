@@ -5,9 +5,9 @@
 #include <array>
 #include <cmath>
 
+#include "knots.h"
 #include "reference_eval.h"
 #include "sfit/curve.h"
-#include "knots.h"
 
 namespace sfit {
 namespace {

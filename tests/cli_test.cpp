@@ -35,8 +35,8 @@ TEST(Cli, ParametersOptionReachesTheFitAndTheReport) {
   const std::string dir = test::temp_dir();
   const std::string hull = "'" + test::example("ship_px121_stations.rows") + "'";
   // The two-stage method (the default surface search tries every rule itself).
-  const auto paper = run_cli("fit " + hull + " --method sfit01 --tol-rel 1e-2 -q --report '" +
-                             dir + "/p.json'");
+  const auto paper =
+      run_cli("fit " + hull + " --method sfit01 --tol-rel 1e-2 -q --report '" + dir + "/p.json'");
   const auto chord = run_cli("fit " + hull + " --method sfit01 --tol-rel 1e-2 --parameters chord " +
                              "--report '" + dir + "/c.json'");
   ASSERT_EQ(paper.exit_code, 0) << paper.err;

@@ -7,9 +7,9 @@
 #include <numbers>
 #include <random>
 
+#include "parameters.h"
 #include "sfit/error.h"
 #include "sfit/incremental.h"
-#include "parameters.h"
 #include "sfit/surface_fit.h"
 #include "test_support.h"
 

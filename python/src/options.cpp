@@ -8,8 +8,8 @@
 #include "errors.h"
 #include "progress.h"
 #include "sfit/error.h"
-#include "sfit/options.h"
 #include "sfit/option_names.h"
+#include "sfit/options.h"
 #include "sfit/parametrization.h"
 
 namespace sfit::python {

@@ -79,11 +79,11 @@ const std::vector<FittedCase>& fitted_cases(std::vector<std::string>* missing) {
   static const std::vector<FittedCase> cases = [] {
     std::vector<FittedCase> v = bundled_cases();
     const std::vector<std::pair<std::string, bool>> more = {
-        {"ring_body", true},          {"bent_tube", true},
-        {"spout_tube", true},         {"iea15mw_blade_af50", true},
+        {"ring_body", true},           {"bent_tube", true},
+        {"spout_tube", true},          {"iea15mw_blade_af50", true},
         {"height_field_small", false}, {"height_field", false},
-        {"topobathy", false},         {"iea3p4mw_blade_ragged9", true},
-        {"d150_wing", true},          {"ship_px121_stations", false}};
+        {"topobathy", false},          {"iea3p4mw_blade_ragged9", true},
+        {"d150_wing", true},           {"ship_px121_stations", false}};
     for (const auto& [name, cu] : more)
       v.push_back(fit_case("data/" + name, load_rows(example(name + ".rows")), cu, false, false));
     return v;

@@ -143,7 +143,8 @@ TEST(Orient, RuleNamesAndDensityAreCheckedByTheLibrary) {
   check_mesh_density(0);
   check_mesh_density(3);
   check_mesh_density(kMaxMeshDensity);
-  for (int bad : {-1, 1, 2, kMaxMeshDensity + 1, 100000}) EXPECT_THROW(check_mesh_density(bad), Error) << bad;
+  for (int bad : {-1, 1, 2, kMaxMeshDensity + 1, 100000})
+    EXPECT_THROW(check_mesh_density(bad), Error) << bad;
 }
 
 }  // namespace
