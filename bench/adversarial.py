@@ -159,14 +159,19 @@ def smooth_small(rng):
     return grid(30, 25, jitter=0.01, rng=rng)
 
 
-def many_tiny_rows(rng):
-    """20,000 rows of 2 or 3 points each across a smooth surface (50,000 points)."""
+def tiny_rows(rng, count):
+    """`count` rows of 2 or 3 points each across the smooth field."""
     rows = []
-    for y in np.linspace(-1, 1, 20000):
+    for y in np.linspace(-1, 1, count):
         n = int(rng.integers(2, 4))
         x = np.sort(rng.uniform(-1, 1, n))
         rows.append(np.column_stack([x, np.full(n, y), field(x, np.full(n, y))]))
     return rows
+
+
+def many_tiny_rows(rng):
+    """20,000 rows of 2 or 3 points each across a smooth surface (50,000 points)."""
+    return tiny_rows(rng, 20000)
 
 
 def middle_pole(rng):
@@ -182,22 +187,23 @@ def middle_pole(rng):
     return rows
 
 
-def all_two_point_rows(rng):
-    """60 rows of 2 points each (fewer than degree + 1): a ruled surface."""
+def two_point_rows(rng, height):
+    """60 rows of 2 points each (fewer than degree + 1) near x = -1 and 1, z = height(x, y)."""
     rows = []
     for y in np.linspace(-1, 1, 60):
         x = np.array([-1.0, 1.0]) + rng.uniform(-0.05, 0.05, 2)
-        rows.append(np.column_stack([x, np.full(2, y), field(x, np.full(2, y))]))
+        rows.append(np.column_stack([x, np.full(2, y), height(x, np.full(2, y))]))
     return rows
+
+
+def all_two_point_rows(rng):
+    """60 rows of 2 points each across the smooth field: a ruled surface."""
+    return two_point_rows(rng, field)
 
 
 def two_point_rows_wave(rng):
     """60 rows of 2 points each across the sheet z = 0.3 sin(2x + y) + 0.2 cos(3y)."""
-    rows = []
-    for y in np.linspace(-1, 1, 60):
-        x = np.array([-1.0, 1.0]) + rng.uniform(-0.05, 0.05, 2)
-        rows.append(np.column_stack([x, np.full(2, y), 0.3 * np.sin(2 * x + y) + 0.2 * np.cos(3 * y)]))
-    return rows
+    return two_point_rows(rng, lambda x, y: 0.3 * np.sin(2 * x + y) + 0.2 * np.cos(3 * y))
 
 
 def mixed_closed(rng):
@@ -214,12 +220,7 @@ def mixed_closed(rng):
 
 def tiny_rows_1e5(rng):
     """50,000 rows of 2 or 3 points (about 10^5 points)."""
-    rows = []
-    for y in np.linspace(-1, 1, 50000):
-        n = int(rng.integers(2, 4))
-        x = np.sort(rng.uniform(-1, 1, n))
-        rows.append(np.column_stack([x, np.full(n, y), field(x, np.full(n, y))]))
-    return rows
+    return tiny_rows(rng, 50000)
 
 
 def one_row(rng):
