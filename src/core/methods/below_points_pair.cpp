@@ -64,11 +64,13 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
   if (best.holds) {
     const ScatteredProblem sp(fr.centred, spec, best.fu, best.fv);
     const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
-    auto guarded = [&](const Surface& s) {
-      return stays_near_where_covered(s, u, v, fr.centred_box) &&
+    // The rule's guard and no fold, at the parameters the surface was solved at.
+    auto guarded = [&](const Surface& s, const std::vector<double>& su,
+                       const std::vector<double>& sv) {
+      return stays_near_where_covered(s, su, sv, fr.centred_box) &&
              geometric_fold(s) <= kFoldRelative * fr.box.diagonal();
     };
-    best.holds = guarded(best.s);
+    best.holds = guarded(best.s, u, v);
     const double work = solve_work(sp, nu, nv, normal.has_value(), fr.centred.total_points());
     // Where the smoothness was lowered to hold T and a guard failed (a span with few points
     // swung out of the box, or the net folded): the weights in between, calmer first.
@@ -77,12 +79,12 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
       budget.spent += work;
       if (!sp.solve(nu, nv, w, s, normal ? kCalm : 0.0, normal ? &*normal : nullptr)) break;
       const PairVerdict verdict = fr.judge(s, u, v, nullptr, nullptr, false);
-      if (verdict.holds && guarded(s)) {
+      if (verdict.holds && guarded(s, u, v)) {
         best.s = std::move(s);
         best.ratio = verdict.ratio;
         best.smoothing = w;
         best.holds = true;
-      } else if (!verdict.holds && verdict.ratio <= kSmoothingReach && guarded(s)) {
+      } else if (!verdict.holds && verdict.ratio <= kSmoothingReach && guarded(s, u, v)) {
         // Calm and unfolded but T missed narrowly: the parameters corrected on this surface
         // and the pair solved again at this weight.
         std::vector<double> cu = u, cv = v, gu, gv;
@@ -94,8 +96,7 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
         if (!again.solve(nu, nv, w, c, normal ? kCalm : 0.0, normal ? &*normal : nullptr)) continue;
         const std::vector<double> au = again.u_at(nu), av = again.v_at(nv);
         const PairVerdict cverdict = fr.judge(c, au, av, nullptr, nullptr, false);
-        if (cverdict.holds && stays_near_where_covered(c, au, av, fr.centred_box) &&
-            geometric_fold(c) <= kFoldRelative * fr.box.diagonal()) {
+        if (cverdict.holds && guarded(c, au, av)) {
           best.s = std::move(c);
           best.ratio = cverdict.ratio;
           best.smoothing = w;
@@ -112,7 +113,7 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
       budget.spent += work;
       if (sp.solve(nu, nv, best.smoothing, s, kCalm)) {
         const PairVerdict verdict = fr.judge(s, u, v, nullptr, nullptr, false);
-        if (verdict.holds && guarded(s)) {
+        if (verdict.holds && guarded(s, u, v)) {
           best.s = std::move(s);
           best.ratio = verdict.ratio;
           best.holds = true;
