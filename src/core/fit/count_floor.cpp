@@ -45,13 +45,31 @@ CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization ru
   const std::size_t n = rows[0].size();
   bool grid = M >= static_cast<std::size_t>(o.degree_v) + 2;
   for (std::size_t j = 0; j < M && grid; ++j) grid = rows[j].size() == n;
-  const std::size_t row_picks = part == FloorPart::kColumns ? 0 : std::min(kPicks, M);
+  // The rows: up to kPicks spread over the data, and the longest row where they miss it. Rows
+  // of very different lengths say very different things: a row of 5 points beside one of 3,000
+  // needs all 5 at a T that the long row holds with 15, because it is short, not because of
+  // noise; without the longest row the picks could all be short ones (long_beside_short in
+  // bench/adversarial.py: 8 rows of 5, "forced", and the floor nu 5 where the long row needs
+  // 93 at the paper's rule).
+  std::vector<std::size_t> row_at;
+  if (part != FloorPart::kColumns) {
+    const std::size_t spread = std::min(kPicks, M);
+    std::size_t longest = 0;
+    for (std::size_t j = 1; j < M; ++j)
+      if (rows[j].size() > rows[longest].size()) longest = j;
+    bool has_longest = false;
+    for (std::size_t k = 0; k < spread; ++k) {
+      row_at.push_back(k * (M - 1) / std::max<std::size_t>(1, spread - 1));
+      has_longest = has_longest || rows[row_at.back()].size() == rows[longest].size();
+    }
+    if (!has_longest) row_at.push_back(longest);
+  }
+  const std::size_t row_picks = row_at.size();
   const std::size_t col_picks = grid && part != FloorPart::kRows ? std::min(kPicks, n) : 0;
   std::vector<std::pair<int, bool>> got(row_picks + col_picks, {0, false});
   parallel_for(got.size(), threads_for(rows, o.threads), [&](std::size_t k) {
     if (k < row_picks) {
-      const std::size_t j = k * (M - 1) / std::max<std::size_t>(1, row_picks - 1);
-      got[k] = smallest_count(rows[j], o.degree_u, o.closed_u, rule, bound);
+      got[k] = smallest_count(rows[row_at[k]], o.degree_u, o.closed_u, rule, bound);
       return;
     }
     const std::size_t c = k - row_picks, i = c * (n - 1) / std::max<std::size_t>(1, col_picks - 1);

@@ -13,14 +13,17 @@ namespace sfit::detail {
 
 struct CountFloor {
   /// The largest of the smallest counts holding T (fit_curve(), CountSearch::kFast) of up to
-  /// 8 rows spread over the data: a surface restricted to a row is a curve on its u knots, so
-  /// (least squares taken as the measure of what a count can hold) no surface with fewer
-  /// control points along the rows holds there either. degree_u + 1 where nothing is known.
+  /// 8 rows spread over the data and the longest row (where they miss it): a surface restricted to
+  /// a row is a curve on its u knots, so (least squares taken as the measure of what a count can
+  /// hold) no surface with fewer control points along the rows holds there either. degree_u + 1
+  /// where nothing is known.
   int nu = 0;
   /// The same across, from up to 8 columns where every row has as many points (a grid);
   /// degree_v + 1 otherwise.
   int nv = 0;
-  /// Every sampled row needs a control point per point (interpolation).
+  /// Every sampled row needs a control point per point (interpolation). The longest row is
+  /// among them, so short rows that need all their points because they are short (any row of
+  /// degree + 2 points where the data is curved) do not make it true beside a long row.
   bool forced = false;
 };
 
