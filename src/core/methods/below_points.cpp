@@ -121,7 +121,7 @@ bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv) {
 }
 
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
-                                             std::string& why) {
+                                             std::string& why, double work) {
   std::optional<Setup> st = prepare(fr, o);
   if (!st) {
     why = "no base surface for the geometric rule";
@@ -148,7 +148,8 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   // per row are decided by the smoothness alone (two rows with 109 across took 3 s a pair).
   const int most_v = std::max(sp.min_v(), 2 * rows);
   const long least = static_cast<long>(sp.min_u()) * sp.min_v();
-  Budget budget{std::max(kWorkFloor, kWorkPerPoint * static_cast<double>(points))};
+  Budget budget{work > 0 ? work
+                         : std::max(kWorkFloor, kWorkPerPoint * static_cast<double>(points))};
   auto pair_of = [&](long product, double a) {
     if (a == 0) {
       const int nu = std::max(sp.min_u(), static_cast<int>(product / rows));
@@ -203,6 +204,47 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
     if (hi <= least) break;
     best = at(hi);
   }
+  // Where nothing held there (T missed, a guard failed or the net folded), a ladder that
+  // assumes no ratio and no easiest product: nu halved from the most below the points down to
+  // the least, for each nu the nv halved from the most below the points down to the least,
+  // these pairs tried largest product first until one holds or the budget ends. A larger pair
+  // is not easier where many of its spans have no data: on 60 rows of 2 points across a wave,
+  // 11 x 10 and 9 x 9 miss T where 8 x 8 holds (the calm and smoothness terms decide the
+  // empty spans, and more of them pull the few points' spans off), so the pairs that hold are
+  // not the products above some threshold, and no one ratio finds them on every such input.
+  long ladder = 0;  // the ladder's pairs tried
+  if (!best && !budget.over()) {
+    std::vector<std::pair<int, int>> rungs;
+    for (int nu = static_cast<int>((points - 1) / sp.min_v());; nu /= 2) {
+      nu = std::max(nu, sp.min_u());
+      for (int nv = static_cast<int>(std::min<long>(most_v, (points - 1) / nu));; nv /= 2) {
+        nv = std::max(nv, sp.min_v());
+        rungs.emplace_back(nu, nv);
+        if (nv == sp.min_v()) break;
+      }
+      if (nu == sp.min_u()) break;
+    }
+    std::stable_sort(rungs.begin(), rungs.end(), [](const auto& a, const auto& b) {
+      return static_cast<long>(a.first) * a.second > static_cast<long>(b.first) * b.second;
+    });
+    for (const auto& [nu, nv] : rungs) {
+      if (budget.over()) break;
+      if (static_cast<long>(nu) * nv >= points || sp.cost(nu, nv) > kBelowPointsCost ||
+          failed.count({nu, nv}))
+        continue;
+      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget);
+      ++tried;
+      ++ladder;
+      if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, t.holds);
+      if (t.holds) {
+        held.emplace(std::pair{nu, nv}, t);
+        best = std::pair{std::pair{nu, nv}, std::move(t)};
+        hi = static_cast<long>(nu) * nv;
+        break;
+      }
+      failed.insert({nu, nv});
+    }
+  }
   auto budget_note = [&] {
     return "the fallback's work budget (" + std::to_string(static_cast<long>(budget.limit / 1e9)) +
            "e9 flops) ended after " + std::to_string(tried) + " pairs";
@@ -211,6 +253,11 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
     why = "no surface below the points held T with the calm term (" + std::to_string(tried) +
           " pairs tried up to " + std::to_string(top) + " control points" +
           (top < points - 1 ? ", the largest affordable" : "") +
+          (ladder > 0 ? ", " + std::to_string(ladder) + " of them on a ladder of halved counts" +
+                            (budget.over() ? ""
+                                           : " down to " + std::to_string(sp.min_u()) + " x " +
+                                                 std::to_string(sp.min_v()))
+                      : std::string()) +
           (budget.over() ? "; " + budget_note() : std::string()) + ")";
     return std::nullopt;
   }
@@ -280,8 +327,10 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
       ": the geometric rule with a calm net where the data is not "
       "(data in " +
       std::to_string(covered) + " of the " + std::to_string(cells.size()) +
-      " knot spans), nu x nv by bisection on the product, then one fewer along u or v "
-      "while it held" +
+      " knot spans), nu x nv by " +
+      (ladder > 0 ? "a ladder of halved counts (" + std::to_string(ladder) + " pairs), then "
+                  : std::string()) +
+      "bisection on the product, then one fewer along u or v while it held" +
       (minimal || cut ? std::string() : " (stopped after " + std::to_string(kDescentTries) + ")") +
       (cut ? " (stopped: " + budget_note() + ")" : std::string()) + " (" + std::to_string(tried) +
       " pairs)";

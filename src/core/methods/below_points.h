@@ -37,9 +37,12 @@ bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double rou
 /// (T per axis), by the geometric rule's guard (stays_near_where_covered()) and unfolded
 /// (geometric_fold()). Within a work budget in flops tied to the points: where it or the
 /// descent's cap ends first, the result's stop reason says "below the points" without
-/// "minimal". nullopt where none held; `why` says what was tried.
+/// "minimal". Where the largest products tried first all fail, a ladder of halved counts
+/// along u and along v (largest product first) before giving up. nullopt where none held;
+/// `why` says what was tried. `work`: the budget in flops where > 0 (tests), else the
+/// default (kWorkFloor or kWorkPerPoint a point, whichever is more).
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
-                                             std::string& why);
+                                             std::string& why, double work = 0);
 
 /// Whether fit_below_points() takes the pair (nu, nv): solved from the same base fractions
 /// with the calm term, corrected, T at every point, the guard passed and unfolded. Its result
