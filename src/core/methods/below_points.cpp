@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <vector>
@@ -13,17 +14,13 @@
 #include "fit_frame.h"
 #include "fit_monitor.h"
 #include "geometric_params.h"
-#include "parallel.h"
 #include "scattered_lsq.h"
-#include "sfit/curve_fit.h"
 #include "sfit/fold_check.h"
 
 namespace sfit::detail {
 
 namespace {
 
-// Share of the points the rows alone must need for T to force (near) interpolation.
-constexpr double kNearInterpolation = 0.9;
 // Bisection steps on the product (each halves the interval: 2^-8 of the points at the end).
 constexpr int kBisections = 8;
 // Where the largest product fails, so many smaller ones (each 0.8 of the last) are tried
@@ -38,48 +35,6 @@ constexpr double kWorkPerPoint = 2e4;
 constexpr long kDescentTries = 6;
 
 }  // namespace
-
-bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
-                            std::string& why) {
-  // A row of at most degree + 1 points is interpolated by any count: it says nothing about
-  // noise (60 rows of 2 points each on a smooth sheet once read as "T forces it"). Only the
-  // longer rows are sampled; where there are none, nothing shows that T forces interpolation.
-  std::vector<std::size_t> longer;
-  for (std::size_t i = 0; i < centred.size(); ++i)
-    if (centred[i].size() >= static_cast<std::size_t>(o.degree_u) + 2) longer.push_back(i);
-  const std::size_t M = longer.size(), picks = std::min<std::size_t>(8, M);
-  if (picks == 0) {
-    why =
-        "every row has at most degree + 1 points, which any count interpolates: the rows "
-        "alone say nothing about noise";
-    return false;
-  }
-  Point bound;
-  for (int a = 0; a < 3; ++a) bound[a] = o.tolerance[a] > 0 ? o.tolerance[a] : roundoff;
-  std::vector<long> need(picks, 0), have(picks, 0);
-  parallel_for(picks, threads_for(centred, o.threads), [&](std::size_t k) {
-    const auto row = centred[longer[k * (M - 1) / std::max<std::size_t>(1, picks - 1)]];
-    have[k] = static_cast<long>(row.size());
-    CurveFitOptions c;
-    c.degree = o.degree_u;
-    c.periodic = o.closed_u;
-    c.search = CountSearch::kFast;
-    c.bound = bound;
-    const std::vector<double> positions =
-        normalized_positions(row, Parametrization::kChord, o.closed_u);
-    c.positions = positions;
-    const CurveFit f = fit_curve(row, c);
-    need[k] = f.curve.control.empty() ? have[k] : std::min<long>(f.curve.count(), have[k]);
-  });
-  long a = 0, b = 0;
-  for (std::size_t k = 0; k < picks; ++k) {
-    a += need[k];
-    b += have[k];
-  }
-  why = "the rows fitted alone at T need " + std::to_string(a) + " of their " + std::to_string(b) +
-        " points";
-  return static_cast<double>(a) >= kNearInterpolation * static_cast<double>(b);
-}
 
 namespace {
 
@@ -166,6 +121,15 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   bool guard_failed = false;                  // a pair held T at every point but failed a guard
   std::set<std::pair<int, int>> failed;       // pairs tried that did not hold
   std::map<std::pair<int, int>, Tried> held;  // and those that held
+  double nearest = HUGE_VAL;                  // the least worst |S - D| / T of a failed pair
+  std::pair<int, int> nearest_pair{0, 0};
+  auto missed = [&](int nu, int nv, const Tried& t) {
+    failed.insert({nu, nv});
+    if (t.ratio < nearest) {
+      nearest = t.ratio;
+      nearest_pair = {nu, nv};
+    }
+  };
   // The surface at a product: the first ratio whose pair holds.
   auto at = [&](long product) -> std::optional<std::pair<std::pair<int, int>, Tried>> {
     for (double a : aspects) {
@@ -181,7 +145,7 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
         held.emplace(std::pair{nu, nv}, t);
         return std::pair{std::pair{nu, nv}, std::move(t)};
       }
-      failed.insert({nu, nv});
+      missed(nu, nv, t);
       guard_failed = guard_failed || t.ratio <= 1;
     }
     return std::nullopt;
@@ -242,23 +206,31 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
         hi = static_cast<long>(nu) * nv;
         break;
       }
-      failed.insert({nu, nv});
+      missed(nu, nv, t);
     }
   }
   auto budget_note = [&] {
-    return "the fallback's work budget (" + std::to_string(static_cast<long>(budget.limit / 1e9)) +
-           "e9 flops) ended after " + std::to_string(tried) + " pairs";
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%.2g", budget.limit);
+    return "the fallback's work budget (" + std::string(limit) + " flops) ended after " +
+           std::to_string(tried) + (tried == 1 ? " pair" : " pairs");
   };
   if (!best) {
     why = "no surface below the points held T with the calm term (" + std::to_string(tried) +
-          " pairs tried up to " + std::to_string(top) + " control points" +
-          (top < points - 1 ? ", the largest affordable" : "") +
+          (tried == 1 ? " pair" : " pairs") + " tried up to " + std::to_string(top) +
+          " control points" + (top < points - 1 ? ", the largest affordable" : "") +
           (ladder > 0 ? ", " + std::to_string(ladder) + " of them on a ladder of halved counts" +
                             (budget.over() ? ""
                                            : " down to " + std::to_string(sp.min_u()) + " x " +
                                                  std::to_string(sp.min_v()))
                       : std::string()) +
           (budget.over() ? "; " + budget_note() : std::string()) + ")";
+    if (nearest > 1 && nearest < HUGE_VAL) {
+      char miss[32];
+      std::snprintf(miss, sizeof miss, "%.3g", nearest);
+      why += "; the nearest, " + std::to_string(nearest_pair.first) + " x " +
+             std::to_string(nearest_pair.second) + ", missed T by " + miss + "x";
+    }
     return std::nullopt;
   }
   long lo = least - 1;
@@ -328,7 +300,8 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
       "(data in " +
       std::to_string(covered) + " of the " + std::to_string(cells.size()) +
       " knot spans), nu x nv by " +
-      (ladder > 0 ? "a ladder of halved counts (" + std::to_string(ladder) + " pairs), then "
+      (ladder > 0 ? "a ladder of halved counts (" + std::to_string(ladder) +
+                        (ladder == 1 ? " pair), then " : " pairs), then ")
                   : std::string()) +
       "bisection on the product, then one fewer along u or v while it held" +
       (minimal || cut ? std::string() : " (stopped after " + std::to_string(kDescentTries) + ")") +
@@ -370,9 +343,13 @@ bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, Fit
   std::optional<GeometricFit> g = fit_below_points(fr, o, points, why);
   progress_advance(1);
   if (!g) {
-    r.report.stop_reason += (above ? "; more control points than data points: "
-                                   : "; it folds, and no unfolded surface below the points: ") +
-                            why + (rows_need.empty() ? "" : "; " + rows_need);
+    // What the rows alone need, over many of them: numbers a user can check against the
+    // points (where nearly all are needed, no surface far below the points is in sight).
+    const std::string note = rows_alone_note(fr.centred, o, fr.roundoff);
+    r.report.stop_reason +=
+        (above ? "; more control points than data points: "
+               : "; it folds, and no unfolded surface below the points: ") +
+        why + (note.empty() ? (rows_need.empty() ? "" : "; " + rows_need) : "; " + note);
     return false;
   }
   DeviationCheck c;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "geometric_search.h"
+#include "rows_alone.h"
 #include "search_frame.h"
 
 namespace sfit::detail {
@@ -20,14 +21,6 @@ inline constexpr double kCalm = 1e-2;
 /// The most flops of one factorisation the fallback solves (about half a second); larger pairs
 /// are not tried.
 inline constexpr double kBelowPointsCost = 1e9;
-
-/// Whether T forces (near) interpolation: rows spread over the data (up to 8 of those with more
-/// than degree + 1 points: shorter ones are interpolated at any T), each fitted alone as a curve
-/// at T (chord-length positions, count_floor.h's fit), need together at least 90 % of their
-/// points. `why` gets the numbers ("the rows fitted alone at T need a of their b points"), or
-/// says that no row is long enough to tell (then false).
-bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
-                            std::string& why);
 
 /// A surface of the geometric rule with fewer control points than `points` (the data's): nu x
 /// nv by a bisection on the product (the ratio nu / nv from the data: the longest row's points
