@@ -218,10 +218,10 @@ TEST(BelowPoints, SmoothRowsAreNotForced) {
 // Rows of 2 points each (fewer than degree + 1) say nothing about noise: any count
 // interpolates them. 60 such rows across a smooth sheet once read as "T forces
 // interpolation" and the default kept the two stages' 4 x 60 for 120 points. The test of
-// forcing now finds nothing to go on, and on this sheet the default gets below the points.
-// (On the plain wave z = 0.3 sin(2x + y) + 0.2 cos(3y) the largest pairs below the points,
-// with many spans without data, miss T and the default still keeps 4 x 60, saying so; see
-// bench/adversarial.py's two_point_rows_wave.)
+// forcing now finds nothing to go on, and on both sheets the default gets below the points
+// (6 x 8, 7 x 8). On the plain wave z = 0.3 sin(2x + y) + 0.2 cos(3y) the largest pairs below
+// the points, with many spans without data, miss T; the ladder of halved counts finds one
+// that holds (before it, the default kept 4 x 60 here).
 Rows two_point_rows(int sheet) {
   Uniform r(5);
   Rows rows;
@@ -253,16 +253,13 @@ TEST(BelowPoints, RowsShorterThanTheDegreeDoNotForceInterpolation) {
     EXPECT_FALSE(detail::t_forces_interpolation(c.centred, o, c.roundoff, why)) << why;
     EXPECT_NE(why.find("at most degree + 1 points"), std::string::npos) << why;
     const FitResult f = fit_surface(rows, o);
-    if (sheet == 0) {
-      EXPECT_LE(size_of(f), points) << f.report.stop_reason;
-    } else if (size_of(f) > points) {
-      // The plain wave: where it stays above the points, the report says why, and why the
-      // rows cannot tell whether T forces it.
-      EXPECT_NE(f.report.stop_reason.find("no surface below the points held"), std::string::npos)
+    EXPECT_LT(size_of(f), points) << f.report.stop_reason;
+    EXPECT_EQ(f.report.stop_reason.rfind("minimal below the points", 0), 0u)
+        << f.report.stop_reason;
+    // The plain wave: the largest pairs below the points miss T, the ladder finds one that holds.
+    if (sheet == 1)
+      EXPECT_NE(f.report.stop_reason.find("a ladder of halved counts"), std::string::npos)
           << f.report.stop_reason;
-      EXPECT_NE(f.report.stop_reason.find("at most degree + 1 points"), std::string::npos)
-          << f.report.stop_reason;
-    }
     EXPECT_EQ(f.report.stop_reason.find("T forces interpolation"), std::string::npos)
         << f.report.stop_reason;
     expect_holds_unfolded(f, rows, o.tolerance);
@@ -357,6 +354,27 @@ TEST(BelowPoints, TheWorkBudgetsEndIsSaidAndTheSurfaceNotCalledMinimal) {
     EXPECT_TRUE(fr.judge(g->surface, g->u, g->v, &c, nullptr, false).holds) << work;
   }
   EXPECT_TRUE(found);
+}
+
+// Where the largest pairs miss T far (roofs and trees of the corner strip at 1e-3 of the
+// diagonal jump by tens of T), no ladder of smaller pairs is tried, and the reason says so,
+// with the nearest pair's miss and what the rows need alone, numbers a user can check.
+TEST(BelowPoints, AFarMissIsSaidWithTheNearestPairAndWhatTheRowsNeed) {
+  const Rows rows = lidar_corner_strip(50, 300);
+  const long points = static_cast<long>(rows.total_points());
+  const FitOptions o = at(rows, 1e-3);
+  const detail::Frame fr(rows, o);
+  std::string why;
+  EXPECT_FALSE(detail::fit_below_points(fr, o, points, why).has_value());
+  EXPECT_NE(why.find("no surface below the points held"), std::string::npos) << why;
+  EXPECT_NE(why.find("no ladder of smaller pairs"), std::string::npos) << why;
+  EXPECT_NE(why.find("missed T by"), std::string::npos) << why;
+  const FitResult f = fit_surface(rows, o);
+  EXPECT_GT(size_of(f), points);
+  EXPECT_NE(f.report.stop_reason.find("fitted alone at T need"), std::string::npos)
+      << f.report.stop_reason;
+  EXPECT_EQ(f.report.stop_reason.find("T forces interpolation"), std::string::npos)
+      << f.report.stop_reason;
 }
 
 }  // namespace
