@@ -184,7 +184,8 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   // empty spans, and more of them pull the few points' spans off), so the pairs that hold are
   // not the products above some threshold, and no one ratio finds them on every such input.
   long ladder = 0;  // the ladder's pairs tried
-  const bool far = nearest > kLadderReach;
+  // (A pair that made no surface, a singular one, says nothing about its neighbours.)
+  const bool far = nearest > kLadderReach && nearest < HUGE_VAL;
   if (!best && !budget.over() && !far) {
     std::vector<std::pair<int, int>> rungs;
     for (int nu = static_cast<int>((points - 1) / sp.min_v());; nu /= 2) {
@@ -238,6 +239,7 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
           "; no ladder of smaller pairs: they are tried where the nearest misses T by at "
           "most " +
           std::to_string(static_cast<int>(kLadderReach)) + "x";
+    if (nearest <= 1) why += "; some held T at the points but left the data's box or folded";
     if (nearest > 1 && nearest < HUGE_VAL) {
       char miss[32];
       std::snprintf(miss, sizeof miss, "%.3g", nearest);
