@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <vector>
@@ -13,17 +14,13 @@
 #include "fit_frame.h"
 #include "fit_monitor.h"
 #include "geometric_params.h"
-#include "parallel.h"
 #include "scattered_lsq.h"
-#include "sfit/curve_fit.h"
 #include "sfit/fold_check.h"
 
 namespace sfit::detail {
 
 namespace {
 
-// Share of the points the rows alone must need for T to force (near) interpolation.
-constexpr double kNearInterpolation = 0.9;
 // Bisection steps on the product (each halves the interval: 2^-8 of the points at the end).
 constexpr int kBisections = 8;
 // Where the largest product fails, so many smaller ones (each 0.8 of the last) are tried
@@ -36,50 +33,15 @@ constexpr double kWorkFloor = 1.5e10;
 constexpr double kWorkPerPoint = 2e4;
 // New pairs the descent from the bisection's pair may solve.
 constexpr long kDescentTries = 6;
+// The ladder runs where the nearest pair tried so far missed T by at most this factor: the
+// pairs that hold are not monotone in the product, but no smaller pair was seen to come from
+// a far miss to within T (two-point rows on a wave: the largest pairs miss by 1.06 ... 1.27x
+// and the ladder finds pairs that hold; the LiDAR strip at 1e-3: 14.9x, and 49 ladder pairs
+// came no nearer than 10.6x; the LiDAR tile at 1e-3: 16.8x, and the ladder spent 12 s of
+// the budget on 9 pairs, none nearer).
+constexpr double kLadderReach = 3;
 
 }  // namespace
-
-bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
-                            std::string& why) {
-  // A row of at most degree + 1 points is interpolated by any count: it says nothing about
-  // noise (60 rows of 2 points each on a smooth sheet once read as "T forces it"). Only the
-  // longer rows are sampled; where there are none, nothing shows that T forces interpolation.
-  std::vector<std::size_t> longer;
-  for (std::size_t i = 0; i < centred.size(); ++i)
-    if (centred[i].size() >= static_cast<std::size_t>(o.degree_u) + 2) longer.push_back(i);
-  const std::size_t M = longer.size(), picks = std::min<std::size_t>(8, M);
-  if (picks == 0) {
-    why =
-        "every row has at most degree + 1 points, which any count interpolates: the rows "
-        "alone say nothing about noise";
-    return false;
-  }
-  Point bound;
-  for (int a = 0; a < 3; ++a) bound[a] = o.tolerance[a] > 0 ? o.tolerance[a] : roundoff;
-  std::vector<long> need(picks, 0), have(picks, 0);
-  parallel_for(picks, threads_for(centred, o.threads), [&](std::size_t k) {
-    const auto row = centred[longer[k * (M - 1) / std::max<std::size_t>(1, picks - 1)]];
-    have[k] = static_cast<long>(row.size());
-    CurveFitOptions c;
-    c.degree = o.degree_u;
-    c.periodic = o.closed_u;
-    c.search = CountSearch::kFast;
-    c.bound = bound;
-    const std::vector<double> positions =
-        normalized_positions(row, Parametrization::kChord, o.closed_u);
-    c.positions = positions;
-    const CurveFit f = fit_curve(row, c);
-    need[k] = f.curve.control.empty() ? have[k] : std::min<long>(f.curve.count(), have[k]);
-  });
-  long a = 0, b = 0;
-  for (std::size_t k = 0; k < picks; ++k) {
-    a += need[k];
-    b += have[k];
-  }
-  why = "the rows fitted alone at T need " + std::to_string(a) + " of their " + std::to_string(b) +
-        " points";
-  return static_cast<double>(a) >= kNearInterpolation * static_cast<double>(b);
-}
 
 namespace {
 
@@ -121,7 +83,7 @@ bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv) {
 }
 
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
-                                             std::string& why) {
+                                             std::string& why, double work) {
   std::optional<Setup> st = prepare(fr, o);
   if (!st) {
     why = "no base surface for the geometric rule";
@@ -148,7 +110,8 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   // per row are decided by the smoothness alone (two rows with 109 across took 3 s a pair).
   const int most_v = std::max(sp.min_v(), 2 * rows);
   const long least = static_cast<long>(sp.min_u()) * sp.min_v();
-  Budget budget{std::max(kWorkFloor, kWorkPerPoint * static_cast<double>(points))};
+  Budget budget{work > 0 ? work
+                         : std::max(kWorkFloor, kWorkPerPoint * static_cast<double>(points))};
   auto pair_of = [&](long product, double a) {
     if (a == 0) {
       const int nu = std::max(sp.min_u(), static_cast<int>(product / rows));
@@ -165,6 +128,15 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   bool guard_failed = false;                  // a pair held T at every point but failed a guard
   std::set<std::pair<int, int>> failed;       // pairs tried that did not hold
   std::map<std::pair<int, int>, Tried> held;  // and those that held
+  double nearest = HUGE_VAL;                  // the least worst |S - D| / T of a failed pair
+  std::pair<int, int> nearest_pair{0, 0};
+  auto missed = [&](int nu, int nv, const Tried& t) {
+    failed.insert({nu, nv});
+    if (t.ratio < nearest) {
+      nearest = t.ratio;
+      nearest_pair = {nu, nv};
+    }
+  };
   // The surface at a product: the first ratio whose pair holds.
   auto at = [&](long product) -> std::optional<std::pair<std::pair<int, int>, Tried>> {
     for (double a : aspects) {
@@ -180,7 +152,7 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
         held.emplace(std::pair{nu, nv}, t);
         return std::pair{std::pair{nu, nv}, std::move(t)};
       }
-      failed.insert({nu, nv});
+      missed(nu, nv, t);
       guard_failed = guard_failed || t.ratio <= 1;
     }
     return std::nullopt;
@@ -203,15 +175,77 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
     if (hi <= least) break;
     best = at(hi);
   }
+  // Where nothing held there (T missed, a guard failed or the net folded), a ladder that
+  // assumes no ratio and no easiest product: nu halved from the most below the points down to
+  // the least, for each nu the nv halved from the most below the points down to the least,
+  // these pairs tried largest product first until one holds or the budget ends. A larger pair
+  // is not easier where many of its spans have no data: on 60 rows of 2 points across a wave,
+  // 11 x 10 and 9 x 9 miss T where 8 x 8 holds (the calm and smoothness terms decide the
+  // empty spans, and more of them pull the few points' spans off), so the pairs that hold are
+  // not the products above some threshold, and no one ratio finds them on every such input.
+  long ladder = 0;  // the ladder's pairs tried
+  // (A pair that made no surface, a singular one, says nothing about its neighbours.)
+  const bool far = nearest > kLadderReach && nearest < HUGE_VAL;
+  if (!best && !budget.over() && !far) {
+    std::vector<std::pair<int, int>> rungs;
+    for (int nu = static_cast<int>((points - 1) / sp.min_v());; nu /= 2) {
+      nu = std::max(nu, sp.min_u());
+      for (int nv = static_cast<int>(std::min<long>(most_v, (points - 1) / nu));; nv /= 2) {
+        nv = std::max(nv, sp.min_v());
+        rungs.emplace_back(nu, nv);
+        if (nv == sp.min_v()) break;
+      }
+      if (nu == sp.min_u()) break;
+    }
+    std::stable_sort(rungs.begin(), rungs.end(), [](const auto& a, const auto& b) {
+      return static_cast<long>(a.first) * a.second > static_cast<long>(b.first) * b.second;
+    });
+    for (const auto& [nu, nv] : rungs) {
+      if (budget.over()) break;
+      if (static_cast<long>(nu) * nv >= points || sp.cost(nu, nv) > kBelowPointsCost ||
+          failed.count({nu, nv}))
+        continue;
+      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget);
+      ++tried;
+      ++ladder;
+      if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, t.holds);
+      if (t.holds) {
+        held.emplace(std::pair{nu, nv}, t);
+        best = std::pair{std::pair{nu, nv}, std::move(t)};
+        hi = static_cast<long>(nu) * nv;
+        break;
+      }
+      missed(nu, nv, t);
+    }
+  }
   auto budget_note = [&] {
-    return "the fallback's work budget (" + std::to_string(static_cast<long>(budget.limit / 1e9)) +
-           "e9 flops) ended after " + std::to_string(tried) + " pairs";
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%.2g", budget.limit);
+    return "the fallback's work budget (" + std::string(limit) + " flops) ended after " +
+           std::to_string(tried) + (tried == 1 ? " pair" : " pairs");
   };
   if (!best) {
     why = "no surface below the points held T with the calm term (" + std::to_string(tried) +
-          " pairs tried up to " + std::to_string(top) + " control points" +
-          (top < points - 1 ? ", the largest affordable" : "") +
+          (tried == 1 ? " pair" : " pairs") + " tried up to " + std::to_string(top) +
+          " control points" + (top < points - 1 ? ", the largest affordable" : "") +
+          (ladder > 0 ? ", " + std::to_string(ladder) + " of them on a ladder of halved counts" +
+                            (budget.over() ? ""
+                                           : " down to " + std::to_string(sp.min_u()) + " x " +
+                                                 std::to_string(sp.min_v()))
+                      : std::string()) +
           (budget.over() ? "; " + budget_note() : std::string()) + ")";
+    if (far && !budget.over())
+      why +=
+          "; no ladder of smaller pairs: they are tried where the nearest misses T by at "
+          "most " +
+          std::to_string(static_cast<int>(kLadderReach)) + "x";
+    if (nearest <= 1) why += "; some held T at the points but left the data's box or folded";
+    if (nearest > 1 && nearest < HUGE_VAL) {
+      char miss[32];
+      std::snprintf(miss, sizeof miss, "%.3g", nearest);
+      why += "; the nearest, " + std::to_string(nearest_pair.first) + " x " +
+             std::to_string(nearest_pair.second) + ", missed T by " + miss + "x";
+    }
     return std::nullopt;
   }
   long lo = least - 1;
@@ -280,8 +314,11 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
       ": the geometric rule with a calm net where the data is not "
       "(data in " +
       std::to_string(covered) + " of the " + std::to_string(cells.size()) +
-      " knot spans), nu x nv by bisection on the product, then one fewer along u or v "
-      "while it held" +
+      " knot spans), nu x nv by " +
+      (ladder > 0 ? "a ladder of halved counts (" + std::to_string(ladder) +
+                        (ladder == 1 ? " pair), then " : " pairs), then ")
+                  : std::string()) +
+      "bisection on the product, then one fewer along u or v while it held" +
       (minimal || cut ? std::string() : " (stopped after " + std::to_string(kDescentTries) + ")") +
       (cut ? " (stopped: " + budget_note() + ")" : std::string()) + " (" + std::to_string(tried) +
       " pairs)";
@@ -321,9 +358,13 @@ bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, Fit
   std::optional<GeometricFit> g = fit_below_points(fr, o, points, why);
   progress_advance(1);
   if (!g) {
-    r.report.stop_reason += (above ? "; more control points than data points: "
-                                   : "; it folds, and no unfolded surface below the points: ") +
-                            why + (rows_need.empty() ? "" : "; " + rows_need);
+    // What the rows alone need, over many of them: numbers a user can check against the
+    // points (where nearly all are needed, no surface far below the points is in sight).
+    const std::string note = rows_alone_note(fr.centred, o, fr.roundoff);
+    r.report.stop_reason +=
+        (above ? "; more control points than data points: "
+               : "; it folds, and no unfolded surface below the points: ") +
+        why + (note.empty() ? (rows_need.empty() ? "" : "; " + rows_need) : "; " + note);
     return false;
   }
   DeviationCheck c;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "geometric_search.h"
+#include "rows_alone.h"
 #include "search_frame.h"
 
 namespace sfit::detail {
@@ -21,14 +22,6 @@ inline constexpr double kCalm = 1e-2;
 /// are not tried.
 inline constexpr double kBelowPointsCost = 1e9;
 
-/// Whether T forces (near) interpolation: rows spread over the data (up to 8 of those with more
-/// than degree + 1 points: shorter ones are interpolated at any T), each fitted alone as a curve
-/// at T (chord-length positions, count_floor.h's fit), need together at least 90 % of their
-/// points. `why` gets the numbers ("the rows fitted alone at T need a of their b points"), or
-/// says that no row is long enough to tell (then false).
-bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
-                            std::string& why);
-
 /// A surface of the geometric rule with fewer control points than `points` (the data's): nu x
 /// nv by a bisection on the product (the ratio nu / nv from the data: the longest row's points
 /// over the rows, then 1, then one control point across per row; never more than two across per
@@ -37,9 +30,12 @@ bool t_forces_interpolation(const Rows& centred, const FitOptions& o, double rou
 /// (T per axis), by the geometric rule's guard (stays_near_where_covered()) and unfolded
 /// (geometric_fold()). Within a work budget in flops tied to the points: where it or the
 /// descent's cap ends first, the result's stop reason says "below the points" without
-/// "minimal". nullopt where none held; `why` says what was tried.
+/// "minimal". Where the largest products tried first all fail, a ladder of halved counts
+/// along u and along v (largest product first) before giving up. nullopt where none held;
+/// `why` says what was tried. `work`: the budget in flops where > 0 (tests), else the
+/// default (kWorkFloor or kWorkPerPoint a point, whichever is more).
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
-                                             std::string& why);
+                                             std::string& why, double work = 0);
 
 /// Whether fit_below_points() takes the pair (nu, nv): solved from the same base fractions
 /// with the calm term, corrected, T at every point, the guard passed and unfolded. Its result
