@@ -33,13 +33,27 @@ RowsAlone rows_alone(const Rows& centred, const FitOptions& o, double roundoff,
   const std::size_t M = longer.size(), picks = std::min<std::size_t>(picks_most, M);
   RowsAlone r;
   r.longer = static_cast<long>(M);
-  r.rows = static_cast<long>(picks);
   if (picks == 0) return r;
+  // The rows fitted: `picks` spread over the longer ones, and the longest where they miss it
+  // (as count_floor.h's do): rows of a few points more than the degree each need all their
+  // points at any T, and without the longest row the picks can all be such rows (8 rows of 5
+  // points beside one of 300 once read as "T forces interpolation", 40 of 40 points).
+  std::vector<std::size_t> chosen;
+  for (std::size_t k = 0; k < picks; ++k)
+    chosen.push_back(longer[k * (M - 1) / std::max<std::size_t>(1, picks - 1)]);
+  const std::size_t longest = *std::max_element(
+      longer.begin(), longer.end(),
+      [&](std::size_t a, std::size_t b) { return centred[a].size() < centred[b].size(); });
+  if (std::none_of(chosen.begin(), chosen.end(),
+                   [&](std::size_t i) { return centred[i].size() == centred[longest].size(); }))
+    chosen.push_back(longest);
+  const std::size_t fitted = chosen.size();
+  r.rows = static_cast<long>(fitted);
   Point bound;
   for (int a = 0; a < 3; ++a) bound[a] = o.tolerance[a] > 0 ? o.tolerance[a] : roundoff;
-  std::vector<long> need(picks, 0), have(picks, 0);
-  parallel_for(picks, threads_for(centred, o.threads), [&](std::size_t k) {
-    const auto row = centred[longer[k * (M - 1) / std::max<std::size_t>(1, picks - 1)]];
+  std::vector<long> need(fitted, 0), have(fitted, 0);
+  parallel_for(fitted, threads_for(centred, o.threads), [&](std::size_t k) {
+    const auto row = centred[chosen[k]];
     have[k] = static_cast<long>(row.size());
     CurveFitOptions c;
     c.degree = o.degree_u;
@@ -52,7 +66,7 @@ RowsAlone rows_alone(const Rows& centred, const FitOptions& o, double roundoff,
     const CurveFit f = fit_curve(row, c);
     need[k] = f.curve.control.empty() ? have[k] : std::min<long>(f.curve.count(), have[k]);
   });
-  for (std::size_t k = 0; k < picks; ++k) {
+  for (std::size_t k = 0; k < fitted; ++k) {
     r.need += need[k];
     r.have += have[k];
     r.full += need[k] >= have[k] ? 1 : 0;

@@ -22,7 +22,8 @@ struct RowsAlone {
 };
 
 /// Up to `picks` rows spread over the data, of those with more than degree + 1 points
-/// (shorter ones are interpolated at any T), each fitted alone as a curve at T (chord-length
+/// (shorter ones are interpolated at any T), and the longest row where they miss it, each
+/// fitted alone as a curve at T (chord-length
 /// positions, count_floor.h's fit, the fast search; an axis with T = 0 at `roundoff`).
 RowsAlone rows_alone(const Rows& centred, const FitOptions& o, double roundoff, std::size_t picks);
 
