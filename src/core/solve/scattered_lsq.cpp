@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "banded_cholesky.h"
 #include "basis.h"
 #include "knots.h"
 #include "parallel.h"
@@ -343,27 +344,8 @@ bool ScatteredFactor::factor(const ScatteredSpec& spec, int nu, int nv,
         if (cv || l + 1 < nv) add_first(i, l, i, (l + 1) % nv);
       }
   }
-  // Banded Cholesky, L L^T, in place.
-  for (long r = 0; r < Nb; ++r) {
-    double* Lr = L.data() + r * w1 - r + b;  // Lr[c] = L(r, c)
-    for (long c = std::max(0L, r - b); c <= r; ++c) {
-      const double* Lc = L.data() + c * w1 - c + b;
-      // Four partial sums: the dot product vectorises (fixed order: the same bits each run).
-      double s4[4] = {0, 0, 0, 0};
-      long k = std::max(0L, r - b);
-      for (; k + 4 <= c; k += 4)
-        for (int e = 0; e < 4; ++e) s4[e] += Lr[k + e] * Lc[k + e];
-      for (; k < c; ++k) s4[0] += Lr[k] * Lc[k];
-      const double sum = Lr[c] - ((s4[0] + s4[1]) + (s4[2] + s4[3]));
-      if (c == r) {
-        if (!(sum > 1e-13 * (trace / static_cast<double>(N)))) return false;
-        Lr[c] = std::sqrt(sum);
-      } else {
-        Lr[c] = sum / Lc[c];
-      }
-    }
-  }
-  return true;
+  // Banded Cholesky, L L^T, in place (banded_cholesky.h).
+  return banded_cholesky(L.data(), Nb, b, 1e-13 * (trace / static_cast<double>(N)));
 }
 
 template <class T>
