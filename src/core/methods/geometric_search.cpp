@@ -70,9 +70,22 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
   Attempt a;
   const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
   if (nu < sp.min_u() || nv < sp.min_v()) return a;
-  std::vector<double> band;  // the data term, summed once for every weight tried
+  // The data term, summed once for every weight tried; its store kept per thread from pair
+  // to pair (scattered_lsq.cpp keeps the factor's: new memory each pair cost page faults).
+  thread_local std::vector<double> band;
   std::vector<Point> rhs;
+  const std::size_t need = static_cast<std::size_t>(nu) * nv * (2 * sp.spec().degree_u + 1) *
+                           (2 * sp.spec().degree_v + 1);
+  if (band.capacity() < need) {
+    band.clear();  // (nothing to copy)
+    band.reserve(std::max(need, band.capacity() + band.capacity() / 2));
+  }
   sp.assemble(nu, nv, band, rhs);
+  struct GiveBack {
+    ~GiveBack() {
+      if (band.capacity() * sizeof(double) > (std::size_t{32} << 20)) band = std::vector<double>();
+    }
+  } give_back;
   for (double w = start; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {
     Surface s;
     if (!scattered_solve(sp.spec(), nu, nv, band, rhs, w, s)) return a;

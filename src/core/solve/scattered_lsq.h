@@ -21,6 +21,7 @@
 //          pulls the fit; the caller checks every point and lowers lambda where T was missed.
 #pragma once
 
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -76,6 +77,8 @@ class ScatteredFactor {
   /// x <- A^-1 x in place, x[I] for unknown I = i nv + l (the Surface's order).
   void solve(std::vector<Point>& x) const;
   void solve(std::vector<double>& x) const;
+  /// The bytes its factor holds (kept for the next factorisation's use).
+  std::size_t bytes() const { return L_.capacity() * sizeof(double); }
 
  private:
   template <class T>
