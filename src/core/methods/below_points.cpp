@@ -53,9 +53,10 @@ struct Setup {
   std::optional<Point> normal;
 };
 
-std::optional<Setup> prepare(const Frame& fr, const FitOptions& o) {
+std::optional<Setup> prepare(const Frame& fr, const FitOptions& o, bool warp) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
   if (!f) return std::nullopt;
+  if (warp) warp_by_chord(fr.centred, f->u);
   Setup st{std::move(*f), {o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads}, {}};
   // An open sheet's height direction: the normal of the points' best plane (the calm term
   // acts on the height only). Closed rows have none: their net is continued linearly.
@@ -71,24 +72,51 @@ std::optional<Setup> prepare(const Frame& fr, const FitOptions& o) {
   return st;
 }
 
+// The smoothness of the plane's coordinates in the warped pass (attempt()'s `plane`): the
+// calm term's weight, so the columns, zigzagging in the plane by half the rows' warps, are
+// straightened by the net rather than followed.
+constexpr double kWarpedPlane = kCalm;
+
+std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long points,
+                                   std::string& why, Budget& budget, bool warp);
+
 }  // namespace
 
-bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv) {
-  const std::optional<Setup> st = prepare(fr, o);
+bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv, bool warped) {
+  const std::optional<Setup> st = prepare(fr, o, warped);
   if (!st) return false;
   const ScatteredProblem sp(fr.centred, st->spec, st->f.u, st->f.v);
   if (nu < sp.min_u() || nv < sp.min_v()) return false;
   Budget unlimited{HUGE_VAL};
-  return attempt(fr, st->spec, st->f.u, st->f.v, nu, nv, st->normal, unlimited).holds;
+  return attempt(fr, st->spec, st->f.u, st->f.v, nu, nv, st->normal, unlimited,
+                 warped && st->normal ? kWarpedPlane : 0)
+      .holds;
 }
 
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
                                              std::string& why, double work) {
-  std::optional<Setup> st = prepare(fr, o);
+  Budget budget{work > 0 ? work
+                         : std::max(kWorkFloor, kWorkPerPoint * static_cast<double>(points))};
+  std::optional<GeometricFit> g = search(fr, o, points, why, budget, false);
+  // Where nothing held from the base plane's parameters, an open sheet's u warped by the
+  // rows' chord length, in what is left of the same budget.
+  if (g || budget.over() || o.closed_u || o.closed_v) return g;
+  std::string warped;
+  g = search(fr, o, points, warped, budget, true);
+  if (!g) why += "; with u warped by the rows' chord length: " + warped;
+  return g;
+}
+
+namespace {
+
+std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long points,
+                                   std::string& why, Budget& budget, bool warp) {
+  std::optional<Setup> st = prepare(fr, o, warp);
   if (!st) {
     why = "no base surface for the geometric rule";
     return std::nullopt;
   }
+  const double plane = warp && st->normal ? kWarpedPlane : 0;
   const ScatteredSpec& spec = st->spec;
   const Fractions* f = &st->f;
   const std::optional<Point>& normal = st->normal;
@@ -110,8 +138,6 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   // per row are decided by the smoothness alone (two rows with 109 across took 3 s a pair).
   const int most_v = std::max(sp.min_v(), 2 * rows);
   const long least = static_cast<long>(sp.min_u()) * sp.min_v();
-  Budget budget{work > 0 ? work
-                         : std::max(kWorkFloor, kWorkPerPoint * static_cast<double>(points))};
   auto pair_of = [&](long product, double a) {
     if (a == 0) {
       const int nu = std::max(sp.min_u(), static_cast<int>(product / rows));
@@ -145,7 +171,7 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
       if (failed.count({nu, nv})) continue;  // tried before, and it failed
       if (auto h = held.find({nu, nv}); h != held.end()) return std::pair{h->first, h->second};
       if (budget.over()) return std::nullopt;  // not tried: the budget ended
-      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget);
+      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget, plane);
       ++tried;
       if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, t.holds);
       if (t.holds) {
@@ -205,7 +231,7 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
       if (static_cast<long>(nu) * nv >= points || sp.cost(nu, nv) > kBelowPointsCost ||
           failed.count({nu, nv}))
         continue;
-      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget);
+      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget, plane);
       ++tried;
       ++ladder;
       if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, t.holds);
@@ -281,7 +307,8 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
         cut = cut || budget.over();
         break;
       }
-      Tried t = h != held.end() ? h->second : attempt(fr, spec, f->u, f->v, a, b, normal, budget);
+      Tried t =
+          h != held.end() ? h->second : attempt(fr, spec, f->u, f->v, a, b, normal, budget, plane);
       if (h == held.end()) {
         ++tried;
         ++descent;
@@ -311,7 +338,8 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   const long covered = std::count(cells.begin(), cells.end(), 1);
   g.stop =
       std::string(minimal ? "minimal below the points" : "below the points") +
-      ": the geometric rule with a calm net where the data is not "
+      ": the geometric rule" + std::string(warp ? " (u warped by the rows' chord length)" : "") +
+      " with a calm net where the data is not "
       "(data in " +
       std::to_string(covered) + " of the " + std::to_string(cells.size()) +
       " knot spans), nu x nv by " +
@@ -324,6 +352,8 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
       " pairs)";
   return g;
 }
+
+}  // namespace
 
 bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r) {
   const long points = static_cast<long>(fr.centred.total_points());
