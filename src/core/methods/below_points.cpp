@@ -45,33 +45,6 @@ constexpr double kLadderReach = 3;
 
 namespace {
 
-// What every pair below the points is solved from: the base surface's fractions, the spec and
-// an open sheet's height direction.
-struct Setup {
-  Fractions f;
-  ScatteredSpec spec;
-  std::optional<Point> normal;
-};
-
-std::optional<Setup> prepare(const Frame& fr, const FitOptions& o, bool warp) {
-  std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
-  if (!f) return std::nullopt;
-  if (warp) warp_by_chord(fr.centred, f->u);
-  Setup st{std::move(*f), {o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads}, {}};
-  // An open sheet's height direction: the normal of the points' best plane (the calm term
-  // acts on the height only). Closed rows have none: their net is continued linearly.
-  if (!o.closed_u && !o.closed_v) {
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    Point mean = Point::Zero();
-    for (const Point& p : fr.centred.points()) mean += p;
-    mean /= static_cast<double>(fr.centred.total_points());
-    for (const Point& p : fr.centred.points()) cov += (p - mean) * (p - mean).transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    if (eig.info() == Eigen::Success) st.normal = eig.eigenvectors().col(0).normalized();
-  }
-  return st;
-}
-
 // The smoothness of the plane's coordinates in the warped pass (attempt()'s `plane`): the
 // calm term's weight, so the columns, zigzagging in the plane by half the rows' warps, are
 // straightened by the net rather than followed.

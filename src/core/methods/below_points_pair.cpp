@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 #include "geometric_params.h"
 #include "sfit/fold_check.h"
 
@@ -141,6 +143,25 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
     }
   }
   return best;
+}
+
+std::optional<Setup> prepare(const Frame& fr, const FitOptions& o, bool warp) {
+  std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
+  if (!f) return std::nullopt;
+  if (warp) warp_by_chord(fr.centred, f->u);
+  Setup st{std::move(*f), {o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads}, {}};
+  // An open sheet's height direction: the normal of the points' best plane (the calm term
+  // acts on the height only). Closed rows have none: their net is continued linearly.
+  if (!o.closed_u && !o.closed_v) {
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    Point mean = Point::Zero();
+    for (const Point& p : fr.centred.points()) mean += p;
+    mean /= static_cast<double>(fr.centred.total_points());
+    for (const Point& p : fr.centred.points()) cov += (p - mean) * (p - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    if (eig.info() == Eigen::Success) st.normal = eig.eigenvectors().col(0).normalized();
+  }
+  return st;
 }
 
 void warp_by_chord(const Rows& rows, std::vector<double>& fu) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "below_points.h"
+#include "geometric_params.h"
 #include "geometric_search.h"
 #include "scattered_lsq.h"
 #include "search_frame.h"
@@ -49,6 +50,16 @@ struct Tried {
 Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<double>& fu0,
               const std::vector<double>& fv0, int nu, int nv, const std::optional<Point>& normal,
               Budget& budget, double plane = 0);
+
+/// What every pair below the points is solved from: the base surface's fractions (u warped by
+/// warp_by_chord() where `warp`), the spec and an open sheet's height direction (the normal of
+/// the points' best plane; closed rows have none). nullopt where there is no base surface.
+struct Setup {
+  Fractions f;
+  ScatteredSpec spec;
+  std::optional<Point> normal;
+};
+std::optional<Setup> prepare(const Frame& fr, const FitOptions& o, bool warp);
 
 /// An open sheet's u warped by each row's own chord length (docs/method.md 7.12): each point's
 /// u (the base plane's) moved halfway to where the row's chord length (in 3D, so a roof's or a
