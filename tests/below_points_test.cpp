@@ -33,8 +33,8 @@ using test::Uniform;
 // of `side` (units: metres), points 1.7 apart along them, the first `lines` lines from the
 // tile's corner (side, 0), so each is clipped by two edges (2 ... n points); gentle ground
 // with flat-roofed buildings and round trees that jump by more than T within a point spacing.
-Rows lidar_corner_strip(int lines, double side) {
-  Uniform r(19);
+Rows lidar_corner_strip(int lines, double side, std::uint32_t seed = 19) {
+  Uniform r(seed);
   struct Box {
     double x, y, w, h, z;
   };
@@ -118,6 +118,37 @@ TEST(BelowPoints, LidarCornerStripGetsFewerControlPointsThanPoints) {
   EXPECT_EQ(f.surface.count_u, 63);  // golden: measured
   EXPECT_EQ(f.surface.count_v, 28);  // 30 by the bisection alone, then two fewer along v
   expect_holds_unfolded(f, rows, o.tolerance);
+}
+
+// The same strip drawn from other seeds, where the base plane's parameters find nothing below
+// the points: the plane gives a roof's or a tree's step (several T within a point spacing) the
+// parameter length of flat ground, and every pair tried misses T by more than 3x (the old
+// default kept the two stages' 84 x 50 and 60 x 50 for 2,598 and 2,597 points). The second pass,
+// u warped halfway to each row's own chord length (docs/method.md 7.12), gets below the points,
+// minimal under that pass, T at every point and no fold.
+TEST(BelowPoints, LidarStripWithStepsGetsBelowThePointsWithChordWarpedParameters) {
+  for (const auto& [seed, nu, nv] : {std::tuple{3u, 35, 35}, std::tuple{4u, 35, 33}}) {
+    const Rows rows = lidar_corner_strip(50, 300, seed);
+    const long points = static_cast<long>(rows.total_points());
+    const FitOptions o = at(rows, 1e-2);
+    FitOptions o1 = o;
+    o1.method = FitMethod::kSfit01;
+    EXPECT_GT(size_of(fit_surface(rows, o1)), points) << "seed " << seed;
+    const FitResult f = fit_surface(rows, o);
+    EXPECT_LT(size_of(f), points) << "seed " << seed;
+    EXPECT_EQ(f.report.stop_reason.rfind("minimal below the points", 0), 0u)
+        << f.report.stop_reason;
+    EXPECT_NE(f.report.stop_reason.find("u warped by the rows' chord length"), std::string::npos)
+        << f.report.stop_reason;
+    EXPECT_EQ(f.surface.count_u, nu) << "seed " << seed;  // golden: measured
+    EXPECT_EQ(f.surface.count_v, nv) << "seed " << seed;
+    expect_holds_unfolded(f, rows, o.tolerance);
+    // Minimal under the pass that made it: one fewer along u or along v does not hold.
+    const detail::Frame fr(rows, o);
+    EXPECT_TRUE(detail::holds_below_points(fr, o, nu, nv, true)) << "seed " << seed;
+    EXPECT_FALSE(detail::holds_below_points(fr, o, nu - 1, nv, true)) << "seed " << seed;
+    EXPECT_FALSE(detail::holds_below_points(fr, o, nu, nv - 1, true)) << "seed " << seed;
+  }
 }
 
 // 30 hand-drawn closed sections of a varying tube (40 ... 140 points each, each its own start

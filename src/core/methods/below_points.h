@@ -40,7 +40,9 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
 /// Whether fit_below_points() takes the pair (nu, nv): solved from the same base fractions
 /// with the calm term, corrected, T at every point, the guard passed and unfolded. Its result
 /// is minimal by this: one fewer along u or along v does not hold (tested).
-bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv);
+/// `warped`: from the fractions of the fallback's second pass (u warped by the rows' chord
+/// length, warp_by_chord()), where the result's stop reason says so.
+bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv, bool warped = false);
 
 /// Where `r` (the search's result: the two stages' surface) has more control points than the
 /// data has points, or folds (with the fold guard on), T is not 0 and the rule is sfit's to

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 #include "geometric_params.h"
 #include "sfit/fold_check.h"
 
@@ -18,17 +20,36 @@ double solve_work(const ScatteredProblem& sp, int nu, int nv, bool calmed, std::
   return (calmed ? 2 : 1) * sp.cost(nu, nv) + kPointWork * static_cast<double>(points);
 }
 
+// The calm solve (ScatteredProblem::solve() with the calm term on the height along `normal`),
+// the plane's coordinates at smoothness at least `plane` where > 0.
+bool calm_solve(const ScatteredProblem& sp, int nu, int nv, double w, Surface& s,
+                const std::optional<Point>& normal, double plane) {
+  if (!(plane > 0) || !normal)
+    return sp.solve(nu, nv, w, s, normal ? kCalm : 0.0, normal ? &*normal : nullptr);
+  std::vector<double> band;
+  std::vector<Point> rhs;
+  sp.assemble(nu, nv, band, rhs);
+  Surface flat;
+  if (!scattered_solve(sp.spec(), nu, nv, band, rhs, w, s, kCalm) ||
+      !scattered_solve(sp.spec(), nu, nv, band, rhs, std::max(w, plane), flat))
+    return false;
+  const Point& n = *normal;
+  for (std::size_t I = 0; I < s.control.size(); ++I)
+    s.control[I] = flat.control[I] + (s.control[I] - flat.control[I]).dot(n) * n;
+  return true;
+}
+
 // One solve at the problem's fractions: the smoothness as the geometric search's, and lowered
 // where T was missed; every point judged (the exact worst ratio). `holds`: T at every point.
 Tried solve_once(const ScatteredProblem& sp, const Frame& fr, int nu, int nv,
-                 const std::optional<Point>& normal, Budget& budget) {
+                 const std::optional<Point>& normal, Budget& budget, double plane) {
   Tried best;
   const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
   const double work = solve_work(sp, nu, nv, normal.has_value(), fr.centred.total_points());
   for (double w = kSmoothing; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {
     Surface s;
     budget.spent += work;
-    if (!sp.solve(nu, nv, w, s, normal ? kCalm : 0.0, normal ? &*normal : nullptr)) break;
+    if (!calm_solve(sp, nu, nv, w, s, normal, plane)) break;
     DeviationCheck c;
     const PairVerdict verdict = fr.judge(s, u, v, &c, nullptr, false);
     if (verdict.ratio < best.ratio) best = Tried{verdict.holds, verdict.ratio, std::move(s), w};
@@ -42,13 +63,13 @@ Tried solve_once(const ScatteredProblem& sp, const Frame& fr, int nu, int nv,
 // One pair (below_points_pair.h).
 Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<double>& fu0,
               const std::vector<double>& fv0, int nu, int nv, const std::optional<Point>& normal,
-              Budget& budget) {
+              Budget& budget, double plane) {
   Tried best;
   const double pass = kPointWork * static_cast<double>(fr.centred.total_points());
   std::vector<double> fu = fu0, fv = fv0;
   for (int round = 0; round <= kCorrectionRounds; ++round) {
     const ScatteredProblem sp(fr.centred, spec, std::move(fu), std::move(fv));
-    Tried t = solve_once(sp, fr, nu, nv, normal, budget);
+    Tried t = solve_once(sp, fr, nu, nv, normal, budget, plane);
     if (!(t.ratio < best.ratio)) break;
     t.fu = sp.fractions_u();
     t.fv = sp.fractions_v();
@@ -77,7 +98,7 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
     for (double w = kSmoothing * 0.1; !best.holds && w > 1.5 * best.smoothing; w *= 0.1) {
       Surface s;
       budget.spent += work;
-      if (!sp.solve(nu, nv, w, s, normal ? kCalm : 0.0, normal ? &*normal : nullptr)) break;
+      if (!calm_solve(sp, nu, nv, w, s, normal, plane)) break;
       const PairVerdict verdict = fr.judge(s, u, v, nullptr, nullptr, false);
       if (verdict.holds && guarded(s, u, v)) {
         best.s = std::move(s);
@@ -93,7 +114,7 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
         to_fractions(s, cu, cv, gu, gv);
         const ScatteredProblem again(fr.centred, spec, std::move(gu), std::move(gv));
         Surface c;
-        if (!again.solve(nu, nv, w, c, normal ? kCalm : 0.0, normal ? &*normal : nullptr)) continue;
+        if (!calm_solve(again, nu, nv, w, c, normal, plane)) continue;
         const std::vector<double> au = again.u_at(nu), av = again.v_at(nv);
         const PairVerdict cverdict = fr.judge(c, au, av, nullptr, nullptr, false);
         if (cverdict.holds && guarded(c, au, av)) {
@@ -122,6 +143,41 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
     }
   }
   return best;
+}
+
+std::optional<Setup> prepare(const Frame& fr, const FitOptions& o, bool warp) {
+  std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
+  if (!f) return std::nullopt;
+  if (warp) warp_by_chord(fr.centred, f->u);
+  Setup st{std::move(*f), {o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads}, {}};
+  // An open sheet's height direction: the normal of the points' best plane (the calm term
+  // acts on the height only). Closed rows have none: their net is continued linearly.
+  if (!o.closed_u && !o.closed_v) {
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    Point mean = Point::Zero();
+    for (const Point& p : fr.centred.points()) mean += p;
+    mean /= static_cast<double>(fr.centred.total_points());
+    for (const Point& p : fr.centred.points()) cov += (p - mean) * (p - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    if (eig.info() == Eigen::Success) st.normal = eig.eigenvectors().col(0).normalized();
+  }
+  return st;
+}
+
+void warp_by_chord(const Rows& rows, std::vector<double>& fu) {
+  const auto& off = rows.offsets();
+  std::vector<double> c;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto r = rows[j];
+    const std::size_t m = r.size(), o = off[j];
+    if (m < 2) continue;
+    c.assign(m, 0.0);
+    for (std::size_t k = 1; k < m; ++k) c[k] = c[k - 1] + (r[k] - r[k - 1]).norm();
+    if (!(c[m - 1] > 0)) continue;
+    const double a = fu[o], b = fu[o + m - 1];
+    for (std::size_t k = 0; k < m; ++k)
+      fu[o + k] = std::clamp(0.5 * fu[o + k] + 0.5 * (a + c[k] / c[m - 1] * (b - a)), 0.0, 1.0);
+  }
 }
 
 }  // namespace sfit::detail

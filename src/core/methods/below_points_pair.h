@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "below_points.h"
+#include "geometric_params.h"
 #include "geometric_search.h"
 #include "scattered_lsq.h"
 #include "search_frame.h"
@@ -43,8 +44,28 @@ struct Tried {
 /// lowest smoothness and a guard failed, the weights in between, calmer first (one that is calm
 /// and unfolded but misses T by at most kSmoothingReach gets one more correction round at that
 /// weight). `normal`: an open sheet's height direction, calmed alone first.
+/// `plane` > 0 (relative, as the smoothness): the coordinates in the base plane (all but the
+/// height along `normal`) are solved with at least this smoothness (the warped pass of
+/// fit_below_points(): its columns must stay straight in the plane); 0: as the search.
 Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<double>& fu0,
               const std::vector<double>& fv0, int nu, int nv, const std::optional<Point>& normal,
-              Budget& budget);
+              Budget& budget, double plane = 0);
+
+/// What every pair below the points is solved from: the base surface's fractions (u warped by
+/// warp_by_chord() where `warp`), the spec and an open sheet's height direction (the normal of
+/// the points' best plane; closed rows have none). nullopt where there is no base surface.
+struct Setup {
+  Fractions f;
+  ScatteredSpec spec;
+  std::optional<Point> normal;
+};
+std::optional<Setup> prepare(const Frame& fr, const FitOptions& o, bool warp);
+
+/// An open sheet's u warped by each row's own chord length (docs/method.md 7.12): each point's
+/// u (the base plane's) moved halfway to where the row's chord length (in 3D, so a roof's or a
+/// tree's step lengthens it) puts it between the row's first and last u. Parameter range then
+/// goes where the height changes along the row, as the row rules' chord length does, while the
+/// row keeps its place in the plane (the columns zigzag half as far as under the row rules).
+void warp_by_chord(const Rows& rows, std::vector<double>& fu);
 
 }  // namespace sfit::detail
