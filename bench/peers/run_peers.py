@@ -51,7 +51,7 @@ LABEL = {"sfit": "sfit (1 thread)", "sfit-chord": "sfit --parameters chord (1 th
          "sfit-mt": "sfit (2 threads)", "scipy-grid":
          "SciPy RectBivariateSpline", "sisl-grid": "SISL s1966", "occt-grid":
          "OCCT PointsToBSplineSurface", "occt-loft": "OCCT PointsToBSpline + AppSurf",
-         "scipy-scattered": "SciPy LSQBivariateSpline (scattered)"}
+         "scipy-scattered": "SciPy scattered (LSQ/SmoothBivariateSpline)"}
 PEER_OF_SFIT = "sfit"  # the sfit time the ratios are taken against (single thread, as the peers)
 
 
