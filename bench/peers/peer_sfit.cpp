@@ -42,6 +42,8 @@ class SfitPeer final : public Peer {
   }
   Handle(Geom_BSplineSurface) surface() const override {
     const Surface& s = result_->surface;
+    // The OCCT copy below is on uniform knots (the default's): never check another surface.
+    if (s.non_uniform()) throw std::runtime_error("sfit peer: non-uniform knots not exported");
     TColgp_Array2OfPnt poles(1, s.count_u, 1, s.count_v);
     for (int i = 0; i < s.count_u; ++i)
       for (int j = 0; j < s.count_v; ++j) {

@@ -3,9 +3,14 @@
 
   run_peers.py --bin build-peers/bench/peers/sfit_peers --out build-peers/peers
                [--max-points 1e7] [--cap 60] [--repeats 5] [--budget 10] [--only NAME,...]
+               [--scan-dir DIR]
 
 Data: the data sets of examples/ (table1_synthetic.rows at T = 1 and 10 mm),
 and generated grids and ragged sets of 10^2 ... 10^7 points (make_sets.py, cached in OUT/data).
+With --scan-dir, also the generated cases of bench/scan_cases.py (the kinds of data users bring,
+written to DIR by write_scan_cases.py): the height fields among them (every point z = f(x, y),
+rows clipped, with holes or uneven) also go to SciPy's scattered fitter (scipy-scattered,
+scipy_scattered_peer.py), and OUT/counts.md compares sfit's count with the best peer within T.
 Tolerance: 1e-2 and 1e-3 of the bounding-box diagonal (the same T for every tool), bicubic.
 Each tool runs in its own process (sfit_peers fit / scipy_peer.py), which times the fit alone
 (median of up to --repeats runs within --budget seconds) and checks the result with the common
@@ -36,10 +41,17 @@ DATA_SETS = [  # (file, kind)
 ]
 GRID_PEERS = ["sfit", "sfit-chord", "sfit-mt", "scipy-grid", "sisl-grid", "occt-grid"]
 RAGGED_PEERS = ["sfit", "sfit-chord", "sfit-mt", "occt-loft"]
+# bench/scan_cases.py's cases (name -> (height field: z = f(x, y) at every point, closed rows)).
+SCAN_CASES = {"range_image_holes": (True, False), "terrain_grid_1e5": (True, False),
+              "clipped_scan_lines": (True, False), "uneven_rows": (True, False),
+              "cornered_sections": (False, False), "lidar_corner_strip": (True, False),
+              "lidar_tile": (True, False), "far_offset": (True, False),
+              "closed_contours": (False, True), "shaky_closed": (False, True)}
 LABEL = {"sfit": "sfit (1 thread)", "sfit-chord": "sfit --parameters chord (1 thread)",
          "sfit-mt": "sfit (2 threads)", "scipy-grid":
          "SciPy RectBivariateSpline", "sisl-grid": "SISL s1966", "occt-grid":
-         "OCCT PointsToBSplineSurface", "occt-loft": "OCCT PointsToBSpline + AppSurf"}
+         "OCCT PointsToBSplineSurface", "occt-loft": "OCCT PointsToBSpline + AppSurf",
+         "scipy-scattered": "SciPy scattered (LSQ/SmoothBivariateSpline)"}
 PEER_OF_SFIT = "sfit"  # the sfit time the ratios are taken against (single thread, as the peers)
 
 
@@ -68,10 +80,12 @@ def run_json(cmd, timeout):
 
 
 def run_peer(args, peer, path, tol, closed):
-    if peer == "scipy-grid":
+    if peer in ("scipy-grid", "scipy-scattered"):
         surf = os.path.join(args.out, "scipy_surface.json")
-        r = run_json([args.python, os.path.join(HERE, "scipy_peer.py"), path, repr(tol), surf,
-                      "--repeats", str(args.repeats), "--budget", str(args.budget)],
+        script = "scipy_peer.py" if peer == "scipy-grid" else "scipy_scattered_peer.py"
+        extra = [] if peer == "scipy-grid" else ["--time-limit", str(args.cap)]
+        r = run_json([args.python, os.path.join(HERE, script), path, repr(tol), surf,
+                      "--repeats", str(args.repeats), "--budget", str(args.budget)] + extra,
                      args.timeout)
         if "error" not in r:
             c = run_json([args.bin, "check", "--surface", surf, "--data", path, "--tol", repr(tol)],
@@ -120,6 +134,8 @@ def main():
     ap.add_argument("--repeats", type=int, default=11)
     ap.add_argument("--budget", type=float, default=10.0, help="stop repeating after this long")
     ap.add_argument("--only", default="", help="comma-separated data set names to run")
+    ap.add_argument("--scan-dir", default="", help="also bench/scan_cases.py's cases, as "
+                    "written to this directory by write_scan_cases.py")
     ap.add_argument("--peers", default="", help="comma-separated tools to run (e.g. sfit-chord)")
     ap.add_argument("--merge-into", default="", help="an earlier results.json: this run's rows "
                     "replace its rows of the same data set, tolerance and tool, and the tables "
@@ -161,6 +177,12 @@ def main():
         for n in sizes:
             path = os.path.join(data_dir, f"{kind}_{int(n)}.v1.rows")
             cases.append((f"{kind}_{int(n)}", path, kind, False, None, kind))
+    scan = {}  # name -> height field
+    for name, (height, closed) in SCAN_CASES.items() if args.scan_dir else ():
+        path = os.path.join(args.scan_dir, name + ".rows")
+        if os.path.exists(path):
+            cases.append((name, path, "scan", closed, None, None))
+            scan[name] = height
     if args.only:
         keep = set(args.only.split(","))
         cases = [c for c in cases if c[0] in keep]
@@ -179,6 +201,8 @@ def main():
         # Closed rows go the lofting way: the grid fitters know no periodic rows (a user would
         # repeat the seam point, which the loft path does).
         peers = GRID_PEERS if d["grid"] and not closed else RAGGED_PEERS
+        if scan.get(name):
+            peers = peers + ["scipy-scattered"]
         if args.peers:
             peers = [p for p in peers if p in args.peers.split(",")]
         for tlabel, tol in tols:
@@ -240,6 +264,9 @@ def write_outputs(results, out):
     table = make_table(results) + "\n" + targets
     write_text(os.path.join(out, "table.md"), table)
     write_text(os.path.join(out, "summary.md"), make_compact(results) + "\n" + targets)
+    counts = make_counts(results)
+    write_text(os.path.join(out, "counts.md"), counts)
+    print(counts)
     print(table)
     plot(results, os.path.join(out, "time_vs_points.png"))
 
@@ -273,7 +300,7 @@ def make_table(results):
                 continue
             c = r.get("check", {})
             ratio = f"{r['median_s'] / sfit['median_s']:.3g}" if sfit else ""
-            note = f" ({r['notes']})" if r["peer"] == "scipy-grid" else ""
+            note = f" ({r['notes']})" if r["peer"].startswith("scipy") else ""
             out.append(head + f" {fmt_time(r['median_s'])} ({len(r['times'])}){note} | "
                        f"{r['coefficients']} ({r['shape']}) | {c.get('max_distance', float('nan')):.3g} | "
                        f"{c.get('out_of_tolerance', '?')} | {ratio} |")
@@ -283,10 +310,12 @@ def make_table(results):
 def make_compact(results):
     """One line per data set and tolerance, one column per tool: time, coefficients, max
     closest distance, points out of tolerance."""
-    cols = ["sfit", "sfit-chord", "scipy-grid", "sisl-grid", "occt-grid", "occt-loft"]
+    cols = ["sfit", "sfit-chord", "scipy-grid", "sisl-grid", "occt-grid", "occt-loft",
+            "scipy-scattered"]
     names = {"sfit": "sfit (1 thread)", "sfit-chord": "sfit chord (1 thread)",
              "scipy-grid": "SciPy", "sisl-grid": "SISL",
-             "occt-grid": "OCCT grid", "occt-loft": "OCCT loft"}
+             "occt-grid": "OCCT grid", "occt-loft": "OCCT loft",
+             "scipy-scattered": "SciPy scattered"}
     by_case = {}
     for r in results:
         by_case.setdefault((r["set"], r["tol_label"]), {})[r["peer"]] = r
@@ -312,6 +341,45 @@ def make_compact(results):
         closed = " (closed)" if any_r["closed_u"] else ""
         out.append(f"| {name}{closed} | {any_r['points']} | {tl} ({any_r['tol']:.3g}) | "
                    + " | ".join(cells) + " |")
+    return "\n".join(out) + "\n"
+
+
+def make_counts(results):
+    """Control points of sfit's default against the best peer within T (the common checker's
+    "points > T" = 0), one line per data set and tolerance."""
+    by_case = {}
+    for r in results:
+        by_case.setdefault((r["set"], r["tol_label"]), {})[r["peer"]] = r
+    out = ["| data set | points | T | sfit default (nu x nv) | sfit points > T | best peer within T "
+           "| its count (shape) | sfit / best | peers: count, points > T |",
+           "|---|---|---|---|---|---|---|---|---|"]
+
+    def ran(r):
+        return r is not None and "coefficients" in r and "check" in r
+
+    for (name, tl), rs in by_case.items():
+        s = rs.get("sfit")
+        any_r = next(iter(rs.values()))
+        within = [r for p, r in rs.items() if not p.startswith("sfit") and ran(r)
+                  and r["check"].get("out_of_tolerance") == 0]
+        best = min(within, key=lambda r: r["coefficients"]) if within else None
+        others = []
+        for p, r in rs.items():
+            if p.startswith("sfit"):
+                continue
+            if ran(r):
+                others.append(f"{LABEL[p]} {r['coefficients']}, "
+                              f"{r['check'].get('out_of_tolerance', '?')}")
+            else:
+                why = (r.get("skipped") or r.get("error") or "failed")[:60]
+                others.append(f"{LABEL[p]}: {why}")
+        sc = f"{s['coefficients']} ({s['shape']})" if ran(s) else (
+            (s or {}).get("error") or (s or {}).get("skipped") or "not run")
+        so = s["check"].get("out_of_tolerance", "?") if ran(s) else ""
+        ratio = f"{s['coefficients'] / best['coefficients']:.3g}" if ran(s) and best else ""
+        out.append(f"| {name} | {any_r['points']} | {tl} ({any_r['tol']:.3g}) | {sc} | {so} | "
+                   + (f"{LABEL[best['peer']]} | {best['coefficients']} ({best['shape']}) | "
+                      if best else "none | | ") + f"{ratio} | " + "; ".join(others) + " |")
     return "\n".join(out) + "\n"
 
 
