@@ -338,7 +338,8 @@ std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long po
 
 }  // namespace
 
-bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r) {
+bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r,
+                          bool rows_tell) {
   const long points = static_cast<long>(fr.centred.total_points());
   const bool above = static_cast<long>(r.surface.count_u) * r.surface.count_v > points;
   const bool folded = o.fold_guard && r.report.fold > kFoldRelative * fr.box.diagonal();
@@ -357,7 +358,7 @@ bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, Fit
     return false;
   }
   std::string rows_need;
-  if (forced || t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need)) {
+  if (forced || (rows_tell && t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need))) {
     if (above) {
       r.report.stop_reason +=
           "; more control points than data points: T forces interpolation, "

@@ -48,7 +48,10 @@ bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv, bo
 /// data has points, or folds (with the fold guard on), T is not 0 and the rule is sfit's to
 /// choose (auto, fewest) or the geometric one (a rule the caller named is kept): unless T forces
 /// interpolation (`forced`, or t_forces_interpolation()), fit_below_points()'s surface
-/// replaces it (true); otherwise r's stop reason says which of the two kept it.
-bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r);
+/// replaces it (true); otherwise r's stop reason says which of the two kept it. With
+/// `rows_tell` false the rows' need alone is not taken as T forcing interpolation (the
+/// geometric rule was searched below a cap only, and its surfaces are no curves along rows).
+bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r,
+                          bool rows_tell = true);
 
 }  // namespace sfit::detail

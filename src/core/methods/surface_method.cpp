@@ -111,6 +111,9 @@ FitResult fit_surface_search(const FitSpec& spec) {
   // rows are too short to reach, is not searched; where noise forces every rule to
   // interpolate the rows, no pair is searched at all.
   long floored = 0, forced_rules = 0;
+  // Where the geometric rule was searched below a cap only (its rows need all their points
+  // alone) and nothing held: the cap and its pairs, for the stop reason.
+  long geo_capped = 0, geo_capped_pairs = 0;
   std::size_t longest = 0;
   for (std::size_t j = 0; j < rows.size(); ++j) longest = std::max(longest, rows[j].size());
   progress_phase("search", rules.size());
@@ -189,8 +192,10 @@ FitResult fit_surface_search(const FitSpec& spec) {
       geo = search_geometric(fr, o, geo_bound, kCorrectionRounds, &geo_pairs);
       tried += geo_pairs;
       if (crf.forced && !geo) {
+        // Not "forced": the rows' need says nothing of this rule's surfaces above the cap.
         ++floored;
-        ++forced_rules;
+        geo_capped = geo_bound;
+        geo_capped_pairs = geo_pairs;
         continue;
       }
       if (geo_pairs == 0) ++floored;  // no pair of it could be tried
@@ -280,13 +285,23 @@ FitResult fit_surface_search(const FitSpec& spec) {
                            : forced    ? "sfit01: the noise forces interpolation at T (every "
                                          "sampled row needs all its points), no pair searched"
                                        : "sfit01: no smaller pair held";
-    if (floored > 0 && !forced)
+    // (The geometric rule searched below its cap is counted with the floored rules, but was
+    // searched: its own note follows.)
+    const long unsearched = floored - (geo_capped > 0 ? 1 : 0);
+    if (unsearched > 0 && !forced)
       b.report.stop_reason =
-          floored == static_cast<long>(searched.size())
+          unsearched == static_cast<long>(searched.size())
               ? "sfit01: no pair searched: rows fitted alone at T need more control points "
                 "than any pair the search could reach"
-              : b.report.stop_reason + " (" + std::to_string(floored) +
+              : b.report.stop_reason + " (" + std::to_string(unsearched) +
                     " rules not searched: their rows at T need more control points)";
+    if (geo_capped > 0)
+      b.report.stop_reason +=
+          "; every sampled row needs all its points alone at T, which says "
+          "nothing of the geometric rule's surfaces (each point has its own "
+          "v): that rule was searched below " +
+          std::to_string(geo_capped) + " control points only (" + std::to_string(geo_capped_pairs) +
+          " pairs) and none held";
     if (all_to_rows)
       b.report.stop_reason += "; the rows took all of T and the columns interpolate them (" +
                               std::to_string(base->surface.count_u) + " x " +
@@ -295,7 +310,7 @@ FitResult fit_surface_search(const FitSpec& spec) {
       b.report.stop_reason +=
           " (" + std::to_string(rs.over_budget) + " pairs over the solve budget)";
     // Never more control points than points unless T forces it (below_points.h).
-    replace_below_points(fr, o, forced, b);
+    replace_below_points(fr, o, forced, b, geo_capped == 0);
     b.report.seconds = now() - t0;
     return std::move(b);
   }
