@@ -384,8 +384,8 @@ def make_counts(results):
 
 
 def make_targets(results):
-    """Issue 5's targets, each with the ratio measured in this run, for sfit's default and for
-    sfit with chord-length parameters."""
+    """The speed targets against the peers (docs/benchmarks.md), each with the ratio measured
+    in this run, for sfit's default and for sfit with chord-length parameters."""
     return "\n".join(make_targets_for(results, p) for p in ("sfit", "sfit-chord"))
 
 

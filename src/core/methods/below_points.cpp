@@ -81,7 +81,8 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
   // Where nothing held from the base plane's parameters, an open sheet's u warped by the
   // rows' chord length, in what is left of the same budget.
   if (g || budget.over() || o.closed_u || o.closed_v) return g;
-  if (nearest > kWarpReach && nearest < HUGE_VAL) return g;
+  // (Not where no pair could be tried: the warped pass has the same base and the same costs.)
+  if (nearest < 0 || (nearest > kWarpReach && nearest < HUGE_VAL)) return g;
   std::string warped;
   g = search(fr, o, points, warped, budget, true, nearest);
   if (!g) why += "; with u warped by the rows' chord length: " + warped;
@@ -93,6 +94,7 @@ namespace {
 std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long points,
                                    std::string& why, Budget& budget, bool warp,
                                    double& nearest_out) {
+  nearest_out = -1;  // no pair tried (no base surface, or none affordable)
   std::optional<Setup> st = prepare(fr, o, warp);
   if (!st) {
     why = "no base surface for the geometric rule";
