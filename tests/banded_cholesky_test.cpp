@@ -60,10 +60,12 @@ TEST(BandedCholesky, SameBitsAsOneEntryAtATimeAndFactorsTheMatrix) {
                                                                {130, 39},
                                                                {203, 90}}) {
     const std::vector<double> A = random_band(N, b, static_cast<unsigned>(N * 131 + b));
-    std::vector<double> L = A, R = A;
+    std::vector<double> L = A, R = A, P = A;
     ASSERT_TRUE(banded_cholesky(L.data(), N, b, 1e-13));
+    ASSERT_TRUE(banded_cholesky(P.data(), N, b, 1e-13, false));  // the plain loop on any CPU
     ASSERT_TRUE(reference(R, N, b, 1e-13));
     EXPECT_EQ(0, std::memcmp(L.data(), R.data(), L.size() * sizeof(double))) << N << " " << b;
+    EXPECT_EQ(0, std::memcmp(P.data(), R.data(), P.size() * sizeof(double))) << N << " " << b;
     // L L^T is A.
     double worst = 0;
     for (long r = 0; r < N; ++r)
@@ -92,6 +94,8 @@ TEST(BandedCholesky, FailsAtAPivotAtRoundOff) {
   std::vector<double> L = A, R = A;
   EXPECT_FALSE(reference(R, N, b, 1e-9));
   EXPECT_FALSE(banded_cholesky(L.data(), N, b, 1e-9));
+  std::vector<double> P = A;
+  EXPECT_FALSE(banded_cholesky(P.data(), N, b, 1e-9, false));
 }
 
 }  // namespace

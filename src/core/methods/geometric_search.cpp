@@ -83,7 +83,7 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
   sp.assemble(nu, nv, band, rhs);
   struct GiveBack {
     ~GiveBack() {
-      if (band.capacity() * sizeof(double) > (std::size_t{32} << 20)) band = std::vector<double>();
+      if (band.capacity() * sizeof(double) > kKeptStoreBytes) band = std::vector<double>();
     }
   } give_back;
   for (double w = start; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {

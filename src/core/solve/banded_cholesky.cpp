@@ -108,10 +108,12 @@ __attribute__((target("avx2"))) bool wide(double* L, long N, long b, double floo
 
 }  // namespace
 
-bool banded_cholesky(double* L, long N, long b, double floor) {
+bool banded_cholesky(double* L, long N, long b, double floor, bool allow_wide) {
 #ifdef SFIT_AVX2_CHOLESKY
   static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return wide(L, N, b, floor);
+  if (avx2 && allow_wide) return wide(L, N, b, floor);
+#else
+  (void)allow_wide;
 #endif
   return plain(L, N, b, floor);
 }

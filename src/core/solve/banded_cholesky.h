@@ -14,6 +14,7 @@ namespace sfit::detail {
 
 /// Factorises the band store `L` (N rows of b + 1: L(r, c), c <= r, r - c <= b, at
 /// L[r (b + 1) + c - r + b]) in place. False at a pivot at or below `floor` (round-off).
-bool banded_cholesky(double* L, long N, long b, double floor);
+/// `wide` false runs the plain loop on every CPU (the tests compare the two paths).
+bool banded_cholesky(double* L, long N, long b, double floor, bool wide = true);
 
 }  // namespace sfit::detail

@@ -132,9 +132,8 @@ namespace {
 // The stores a search fills pair after pair, kept per thread between solves: a fresh one each
 // time cost page faults and the zeroing of new memory (a 5800-unknown pair's factor is 4 MB):
 // on the 10^4-point blade at 1e-4 (closed u) 9700 page faults and 616 ms of CPU, 5900 and
-// 548 ms kept. The same values are written, so the same bits; a store above kKeptBytes is
-// given back after its solve.
-constexpr std::size_t kKeptBytes = std::size_t{32} << 20;
+// 548 ms kept. The same values are written, so the same bits; a store above kKeptStoreBytes
+// (scattered_lsq.h) is given back after its solve.
 
 ScatteredFactor& kept_factor() {
   thread_local ScatteredFactor f;
@@ -155,7 +154,7 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out, dou
   std::vector<Point> rhs;
   assemble(nu, nv, band, rhs);
   const bool ok = scattered_solve(spec_, nu, nv, band, rhs, smoothing, out, calm, normal);
-  if (band.capacity() * sizeof(double) > kKeptBytes) band = std::vector<double>();
+  if (band.capacity() * sizeof(double) > kKeptStoreBytes) band = std::vector<double>();
   return ok;
 }
 
@@ -215,7 +214,7 @@ bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vecto
   struct GiveBack {
     ScatteredFactor& f;
     ~GiveBack() {
-      if (f.bytes() > kKeptBytes) f = ScatteredFactor{};
+      if (f.bytes() > kKeptStoreBytes) f = ScatteredFactor{};
     }
   } give_back{f};
   if (!f.factor(spec, nu, nv, band, smoothing, calm)) return false;

@@ -30,6 +30,12 @@
 
 namespace sfit::detail {
 
+/// The largest store a search keeps per thread from one pair's solve to the next (a larger one
+/// is given back after its solve). Up to three such stores per thread (the band, the factor, the
+/// geometric search's data term) stay with a thread for its life: up to about 100 MB a pool
+/// thread in a long-lived process (Python, the editor's server).
+inline constexpr std::size_t kKeptStoreBytes = std::size_t{32} << 20;
+
 /// The smoothness weight relative to the mean diagonal of the data term.
 inline constexpr double kSmoothing = 1e-4;
 
