@@ -35,6 +35,23 @@ std::pair<int, bool> smallest_count(std::span<const Point> points, int degree, b
 }
 }  // namespace
 
+std::vector<std::size_t> spread_rows(const Rows& rows, const std::vector<std::size_t>& among,
+                                     std::size_t picks) {
+  std::vector<std::size_t> out;
+  const std::size_t M = among.size(), spread = std::min(picks, M);
+  if (spread == 0) return out;
+  std::size_t longest = among[0];
+  for (std::size_t i : among)
+    if (rows[i].size() > rows[longest].size()) longest = i;
+  bool has_longest = false;
+  for (std::size_t k = 0; k < spread; ++k) {
+    out.push_back(among[k * (M - 1) / std::max<std::size_t>(1, spread - 1)]);
+    has_longest = has_longest || rows[out.back()].size() == rows[longest].size();
+  }
+  if (!has_longest) out.push_back(longest);
+  return out;
+}
+
 CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization rule, double roundoff,
                        FloorPart part) {
   CountFloor out{o.degree_u + 1, o.degree_v + 1, false};
@@ -45,24 +62,14 @@ CountFloor count_floor(const Rows& rows, const FitOptions& o, Parametrization ru
   const std::size_t n = rows[0].size();
   bool grid = M >= static_cast<std::size_t>(o.degree_v) + 2;
   for (std::size_t j = 0; j < M && grid; ++j) grid = rows[j].size() == n;
-  // The rows: up to kPicks spread over the data, and the longest row where they miss it. Rows
-  // of very different lengths say very different things: a row of 5 points beside one of 3,000
-  // needs all 5 at a T that the long row holds with 15, because it is short, not because of
-  // noise; without the longest row the picks could all be short ones (long_beside_short in
-  // bench/adversarial.py: 8 rows of 5, "forced", and the floor nu 5 where the long row needs
-  // 93 at the paper's rule).
+  // The rows: up to kPicks spread over the data, and the longest row where they miss it
+  // (spread_rows(); long_beside_short in bench/adversarial.py: 8 rows of 5, "forced", and the
+  // floor nu 5 where the long row needs 93 at the paper's rule).
   std::vector<std::size_t> row_at;
   if (part != FloorPart::kColumns) {
-    const std::size_t spread = std::min(kPicks, M);
-    std::size_t longest = 0;
-    for (std::size_t j = 1; j < M; ++j)
-      if (rows[j].size() > rows[longest].size()) longest = j;
-    bool has_longest = false;
-    for (std::size_t k = 0; k < spread; ++k) {
-      row_at.push_back(k * (M - 1) / std::max<std::size_t>(1, spread - 1));
-      has_longest = has_longest || rows[row_at.back()].size() == rows[longest].size();
-    }
-    if (!has_longest) row_at.push_back(longest);
+    std::vector<std::size_t> all(M);
+    for (std::size_t j = 0; j < M; ++j) all[j] = j;
+    row_at = spread_rows(rows, all, kPicks);
   }
   const std::size_t row_picks = row_at.size();
   const std::size_t col_picks = grid && part != FloorPart::kRows ? std::min(kPicks, n) : 0;

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <climits>
+#include <cstddef>
+#include <vector>
 
 #include "sfit/parametrization.h"
 #include "sfit/rows.h"
@@ -32,6 +34,14 @@ struct CountFloor {
 /// numbers as in kAll (each curve is fitted alone), so a caller may fit the rows first and the
 /// columns only where the rows do not decide already.
 enum class FloorPart { kAll, kRows, kColumns };
+
+/// The rows a test of what the rows need alone fits: up to `picks` of `among` (indices of
+/// `rows`, in order) spread evenly over them, and the longest of `among` where those miss its
+/// length. Rows of very different lengths say very different things: a row of 5 points beside
+/// one of 3,000 needs its 5 at a T that the long row holds with 15 because it is short, not
+/// because of noise, and without the longest row the picks can all be such rows.
+std::vector<std::size_t> spread_rows(const Rows& rows, const std::vector<std::size_t>& among,
+                                     std::size_t picks);
 
 /// The floor of `rule` on `rows` (centred) at T = o.tolerance (the round-off where T is 0).
 /// Weighted rows and rows shorter than degree + 2 points say nothing (the floor stays at

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "count_floor.h"
 #include "fit_frame.h"
 #include "geometric_params.h"
 #include "parallel.h"
@@ -35,18 +36,9 @@ RowsAlone rows_alone(const Rows& centred, const FitOptions& o, double roundoff,
   r.longer = static_cast<long>(M);
   if (picks == 0) return r;
   // The rows fitted: `picks` spread over the longer ones, and the longest where they miss it
-  // (as count_floor.h's do): rows of a few points more than the degree each need all their
-  // points at any T, and without the longest row the picks can all be such rows (8 rows of 5
-  // points beside one of 300 once read as "T forces interpolation", 40 of 40 points).
-  std::vector<std::size_t> chosen;
-  for (std::size_t k = 0; k < picks; ++k)
-    chosen.push_back(longer[k * (M - 1) / std::max<std::size_t>(1, picks - 1)]);
-  const std::size_t longest = *std::max_element(
-      longer.begin(), longer.end(),
-      [&](std::size_t a, std::size_t b) { return centred[a].size() < centred[b].size(); });
-  if (std::none_of(chosen.begin(), chosen.end(),
-                   [&](std::size_t i) { return centred[i].size() == centred[longest].size(); }))
-    chosen.push_back(longest);
+  // (count_floor.h's spread_rows(): 8 rows of 5 points beside one of 300 once read as "T
+  // forces interpolation", 40 of 40 points).
+  const std::vector<std::size_t> chosen = spread_rows(centred, longer, picks);
   const std::size_t fitted = chosen.size();
   r.rows = static_cast<long>(fitted);
   Point bound;
