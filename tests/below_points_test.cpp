@@ -205,68 +205,6 @@ TEST(BelowPoints, ShakyClosedSectionsGetBelowThePointsWithoutAFold) {
   }
 }
 
-// Ragged rows (10 ... 20 points) whose noise is ten times T: every row needs all its points,
-// the two stages interpolate (nu = the longest row, one control point per row across: more
-// than the points), and the report says that T forces it.
-TEST(BelowPoints, NoiseAboveTForcesInterpolationAndTheReportSaysSo) {
-  Uniform r(3);
-  Rows rows;
-  for (int j = 0; j < 12; ++j) {
-    const int n = 10 + (j * 7) % 11;
-    for (int k = 0; k < n; ++k) {
-      const double x = static_cast<double>(k) / (n - 1);
-      rows.push_point(Point(x, 0.1 * j, 0.2 * (r() - 0.5)));
-    }
-    rows.end_row();
-  }
-  FitOptions o;
-  o.tolerance = Point::Constant(0.01);  // the noise: up to 0.1
-  std::string why;
-  const detail::Centring c = detail::centre_rows(rows, 1);
-  EXPECT_TRUE(detail::t_forces_interpolation(c.centred, o, c.roundoff, why)) << why;
-  const FitResult f = fit_surface(rows, o);
-  EXPECT_TRUE(f.report.within_tolerance);
-  EXPECT_GT(size_of(f), static_cast<long>(rows.total_points()));
-  EXPECT_NE(f.report.stop_reason.find("T forces interpolation"), std::string::npos)
-      << f.report.stop_reason;
-}
-
-// Smooth rows need far fewer control points than points: T forces nothing.
-TEST(BelowPoints, SmoothRowsAreNotForced) {
-  Rows rows;
-  for (int j = 0; j < 10; ++j) {
-    for (int k = 0; k < 50; ++k) {
-      const double x = k / 49.0, y = 0.1 * j;
-      rows.push_point(Point(x, y, std::sin(3 * x) * std::cos(2 * y)));
-    }
-    rows.end_row();
-  }
-  const detail::Centring c = detail::centre_rows(rows, 1);
-  std::string why;
-  EXPECT_FALSE(detail::t_forces_interpolation(c.centred, at(rows, 1e-3), c.roundoff, why)) << why;
-}
-
-// Rows of a few points more than the degree need all their points at any T: 30 rows of 5
-// points beside one smooth row of 300 once read as "T forces interpolation" ("the rows fitted
-// alone at T need 40 of their 40 points": the 8 rows the test fits were all short). The
-// longest row is fitted too, and it needs few of its points.
-TEST(BelowPoints, ShortRowsBesideALongOneDoNotForceInterpolation) {
-  Rows rows;
-  for (int j = 0; j < 31; ++j) {
-    const int n = j == 15 ? 300 : 5;
-    for (int k = 0; k < n; ++k) {
-      const double x = -1 + 2.0 * k / (n - 1), y = -1 + 2.0 * j / 30;
-      rows.push_point(Point(x, y, 0.3 * std::sin(2 * x + y) + 0.2 * std::cos(3 * y)));
-    }
-    rows.end_row();
-  }
-  const detail::Centring c = detail::centre_rows(rows, 1);
-  std::string why;
-  EXPECT_FALSE(detail::t_forces_interpolation(c.centred, at(rows, 1e-3), c.roundoff, why)) << why;
-  // The 8 spread rows (40 points) and the long row (300 points).
-  EXPECT_NE(why.find("of their 340 points"), std::string::npos) << why;
-}
-
 // Rows of 2 points each (fewer than degree + 1) say nothing about noise: any count
 // interpolates them. 60 such rows across a smooth sheet once read as "T forces
 // interpolation" and the default kept the two stages' 4 x 60 for 120 points. The test of
