@@ -185,7 +185,8 @@ FitResult fit_surface_search(const FitSpec& spec) {
       // surface through them is smooth (bench/adversarial.py's zigzag_rows: every row 80 of 80
       // points, the rule 15 x 12). There the rule is searched below a quarter of the points
       // only, a few small solves where noise does force interpolation (no smooth surface that
-      // small holds), and where nothing holds it counts as ruled out by its floor, as before.
+      // small holds); where nothing holds it counts as ruled out by its floor, but not as
+      // "forced": the report says how far it was searched, and claims no noise.
       const long geo_bound =
           crf.forced ? std::min<long>(bound, static_cast<long>(points / 4)) : bound;
       long geo_pairs = 0;
