@@ -72,15 +72,8 @@ Rows lidar_corner_strip(int lines, double side, std::uint32_t seed = 19) {
   return rows;
 }
 
-long size_of(const FitResult& f) {
-  return static_cast<long>(f.surface.count_u) * f.surface.count_v;
-}
-
-FitOptions at(const Rows& rows, double relative) {
-  FitOptions o;
-  o.tolerance = Point::Constant(relative * bounding_box(rows).diagonal());
-  return o;
-}
+using test::at;
+using test::size_of;
 
 // T at every point by the independent evaluator at the points' own (u, v), every 7th point
 // within T of the surface by an independent closest-point search, and no fold on columns

@@ -27,9 +27,7 @@ constexpr Bundled kBundled[] = {{"d150_wing.rows", true},
                                 {"ship_px121_stations.rows", false},
                                 {"table1_synthetic.rows", false}};
 
-long size_of(const FitResult& f) {
-  return static_cast<long>(f.surface.count_u) * f.surface.count_v;
-}
+using test::size_of;
 
 // Every point within T per axis by the independent evaluator, and by Surface::evaluate.
 void expect_guarantee(const FitResult& fit, const Rows& rows, const Point& tol) {

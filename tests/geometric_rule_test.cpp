@@ -109,9 +109,7 @@ Rows ragged_sections() {
   return rows;
 }
 
-long size_of(const FitResult& f) {
-  return static_cast<long>(f.surface.count_u) * f.surface.count_v;
-}
+using test::size_of;
 
 // T at every point at its parameters (the independent evaluator), and every point within T of
 // the surface by an independent closest-point search (T the same on every axis here).

@@ -17,15 +17,8 @@ namespace {
 
 using test::Uniform;
 
-long size_of(const FitResult& f) {
-  return static_cast<long>(f.surface.count_u) * f.surface.count_v;
-}
-
-FitOptions at(const Rows& rows, double relative) {
-  FitOptions o;
-  o.tolerance = Point::Constant(relative * bounding_box(rows).diagonal());
-  return o;
-}
+using test::at;
+using test::size_of;
 
 // Ragged rows (10 ... 20 points) whose noise is ten times T: every row needs all its points,
 // the two stages interpolate (nu = the longest row, one control point per row across: more

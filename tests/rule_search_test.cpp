@@ -17,9 +17,7 @@ constexpr Parametrization kRules[] = {Parametrization::kGeometric, Parametrizati
                                       Parametrization::kChord, Parametrization::kCentripetal,
                                       Parametrization::kPaper};
 
-long size_of(const FitResult& f) {
-  return static_cast<long>(f.surface.count_u) * f.surface.count_v;
-}
+using test::size_of;
 
 // The default against each rule alone: never more control points, every point within T.
 void expect_fewest(const Rows& rows, const Point& tol, const char* what) {

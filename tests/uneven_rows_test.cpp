@@ -72,9 +72,7 @@ std::vector<int> lengths(std::vector<int> long_rows, int short_length, int long_
   return out;
 }
 
-long size_of(const FitResult& f) {
-  return static_cast<long>(f.surface.count_u) * f.surface.count_v;
-}
+using test::size_of;
 
 // T at every point at its parameters (the independent evaluator), every (stride-th) point within
 // T of the surface by an independent closest-point search (T the same on every axis), fold 0.

@@ -25,6 +25,18 @@ struct Uniform {
   }
 };
 
+/// A fit's control points, nu x nv.
+inline long size_of(const FitResult& f) {
+  return static_cast<long>(f.surface.count_u) * f.surface.count_v;
+}
+
+/// The default options at T = `relative` of the bounding box's diagonal on every axis.
+inline FitOptions at(const Rows& rows, double relative) {
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, relative);
+  return o;
+}
+
 /// Path of a file in examples/.
 std::string example(const std::string& name);
 /// Path of a data set in examples/ (the README's "Data" table). The names of the models the
