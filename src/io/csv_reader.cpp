@@ -193,30 +193,22 @@ class Parser {
   }
 
   double number(const Field& f) {
-    const std::string_view tok = f.text;
     double x = 0;
-    switch (detail::read_field_number(tok, x)) {
-      case detail::FieldNumber::kOk:
-        return x;
-      case detail::FieldNumber::kEmpty:
-        fail(ErrorCode::kInputSyntax, f.column, "empty field where a number belongs");
-      case detail::FieldNumber::kOutOfRange:
-        fail(ErrorCode::kInputData, f.column,
-             "'" + show(tok) + "' is out of the range of a double");
-      case detail::FieldNumber::kNotFinite:
-        fail(ErrorCode::kInputData, f.column, "'" + show(tok) + "' is not a finite number");
-      default:
-        fail(ErrorCode::kInputSyntax, f.column, "'" + show(tok) + "' is not a number");
-    }
+    const detail::FieldNumber what = detail::read_field_number(f.text, x);
+    if (what != detail::FieldNumber::kOk) detail::throw_field_error(what, f.text, place(f.column));
+    return x;
   }
 
   [[noreturn]] void fail(ErrorCode code, std::size_t col0, const std::string& msg) {
-    Place p{.file = out_.name,
-            .line = line_no_,
-            .column = static_cast<long>(col0 + col_base_) + 1,
-            .row = static_cast<long>(out_.rows.size()),
-            .point = static_cast<long>(out_.rows.open_row_size())};
-    throw Error(code, msg, p);
+    throw Error(code, msg, place(col0));
+  }
+
+  Place place(std::size_t col0) const {
+    return Place{.file = out_.name,
+                 .line = line_no_,
+                 .column = static_cast<long>(col0 + col_base_) + 1,
+                 .row = static_cast<long>(out_.rows.size()),
+                 .point = static_cast<long>(out_.rows.open_row_size())};
   }
 
   RowsFile out_;

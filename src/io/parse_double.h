@@ -13,6 +13,8 @@
 #include <string>
 #include <string_view>
 
+#include "sfit/error.h"
+
 namespace sfit::io::detail {
 
 /// std::from_chars(b, e, x) for doubles, with its verdicts (ptr, ec) unchanged: the common case,
@@ -68,6 +70,23 @@ inline std::string show_field(std::string_view tok) {
   }
   if (tok.size() > 40) s += "...";
   return s;
+}
+
+/// The error of a field that is no usable number (read_field_number() did not give kOk), with
+/// the message both readers give for it; `where` places it (file, line, column, row, point).
+[[noreturn]] inline void throw_field_error(FieldNumber what, std::string_view tok,
+                                           const Place& where) {
+  switch (what) {
+    case FieldNumber::kEmpty:
+      throw Error(ErrorCode::kInputSyntax, "empty field where a number belongs", where);
+    case FieldNumber::kOutOfRange:
+      throw Error(ErrorCode::kInputData,
+                  "'" + show_field(tok) + "' is out of the range of a double", where);
+    case FieldNumber::kNotFinite:
+      throw Error(ErrorCode::kInputData, "'" + show_field(tok) + "' is not a finite number", where);
+    default:
+      throw Error(ErrorCode::kInputSyntax, "'" + show_field(tok) + "' is not a number", where);
+  }
 }
 
 }  // namespace sfit::io::detail

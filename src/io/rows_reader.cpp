@@ -64,7 +64,8 @@ class Parser {
       while (e < size && kClass[static_cast<unsigned char>(data[e])] == kToken) ++e;
       const std::string_view tok = s.substr(i, e - i);
       if (n == 4)
-        fail(ErrorCode::kInputSyntax, i, "more than 4 numbers on a line: '" + show(tok) + "'");
+        fail(ErrorCode::kInputSyntax, i,
+             "more than 4 numbers on a line: '" + detail::show_field(tok) + "'");
       if (n == 3) weight_col = i;
       v[n++] = number(tok, i);
       i = e;
@@ -121,27 +122,21 @@ class Parser {
 
   double number(std::string_view tok, std::size_t col) {
     double x = 0;
-    switch (detail::read_field_number(tok, x)) {
-      case detail::FieldNumber::kOk:
-        return x;
-      case detail::FieldNumber::kOutOfRange:
-        fail(ErrorCode::kInputData, col, "'" + show(tok) + "' is out of the range of a double");
-      case detail::FieldNumber::kNotFinite:
-        fail(ErrorCode::kInputData, col, "'" + show(tok) + "' is not a finite number");
-      default:
-        fail(ErrorCode::kInputSyntax, col, "'" + show(tok) + "' is not a number");
-    }
+    const detail::FieldNumber what = detail::read_field_number(tok, x);
+    if (what != detail::FieldNumber::kOk) detail::throw_field_error(what, tok, place(col));
+    return x;
   }
 
-  static std::string show(std::string_view tok) { return detail::show_field(tok); }
-
   [[noreturn]] void fail(ErrorCode code, std::size_t col0, const std::string& msg) {
-    Place p{.file = out_.name,
-            .line = line_no_,
-            .column = static_cast<long>(col0 + col_base_) + 1,
-            .row = static_cast<long>(out_.rows.size()),
-            .point = static_cast<long>(out_.rows.open_row_size())};
-    throw Error(code, msg, p);
+    throw Error(code, msg, place(col0));
+  }
+
+  Place place(std::size_t col0) const {
+    return Place{.file = out_.name,
+                 .line = line_no_,
+                 .column = static_cast<long>(col0 + col_base_) + 1,
+                 .row = static_cast<long>(out_.rows.size()),
+                 .point = static_cast<long>(out_.rows.open_row_size())};
   }
 
   RowsFile out_;
