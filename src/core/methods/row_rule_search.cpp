@@ -56,13 +56,7 @@ std::optional<Candidate> search_row_rule(RowRuleSearch& rs, Parametrization rule
   });
   PairChoice choice;
   if (rs.step == 1) {
-    // Fewer control points across than the floor's columns need are not tried: the columns
-    // whose top pair misses T there (a solve of up to max_u x nv each, the costliest failures
-    // of a search on a grid) and the bisection steps beneath it are spared. (On a sample, and
-    // for minimax below, the whole range.)
-    PairRange from_floor = range;
-    from_floor.min_v = std::clamp(rs.floor_v, range.min_v, range.max_v);
-    choice = search_pairs(from_floor, bound, l2);
+    choice = search_pairs(range, bound, l2);
   } else {
     choice = search_on_sample(fr, rs.few, prob, spec_of(os, rule, fr.threads, rs.seam_offsets),
                               o.tolerance, rs.step, range, bound, l2, rs.tried);

@@ -37,10 +37,7 @@ struct RowRuleSearch {
   const FitResult* base;  // the two stages' surface where it was made
   KeptSurfaces& kept;     // no pair solved twice
   FitMonitor* monitor;
-  bool linf_may;  // minimax may be tried (the norm allows it; no weights)
-  // The least nv the least-squares search on all points (step 1) tries: the rule's count
-  // floor's (count_floor.h: columns of a grid fitted alone at T). 0: the problem's least.
-  int floor_v = 0;
+  bool linf_may;         // minimax may be tried (the norm allows it; no weights)
   long over_budget = 0;  // pairs not solved: over the solve budget
   long tried = 0;        // pairs solved
 };

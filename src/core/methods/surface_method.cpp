@@ -236,7 +236,6 @@ FitResult fit_surface_search(const FitSpec& spec) {
     }
     searched.push_back(rule);
     rs.tried = 0;
-    rs.floor_v = floor_of(rule).nv;
     std::optional<Candidate> found = search_row_rule(rs, rule, bound, rule_u, rule_v);
     tried += rs.tried;
     if (found && static_cast<long>(found->nu) * found->nv < bound) {
