@@ -63,9 +63,9 @@ struct Frame {
 };
 
 /// The parameter rules the search tries for FitOptions::parametrization (all five for kAuto
-/// and kFewest, in the order geometric, uniform, chord, centripetal, paper, geometric first
-/// so that its count bounds the others' searches; then the registered rules that opted in,
-/// automatic_rules()).
+/// and kFewest, in the order geometric, uniform, chord, centripetal, paper; then the
+/// registered rules that opted in, automatic_rules()). The surface search moves geometric
+/// last (surface_method.cpp).
 std::vector<Parametrization> rules_of(Parametrization p);
 /// The solver's spec for a fit's options at one rule.
 TensorSpec spec_of(const FitOptions& o, Parametrization rule, int threads,

@@ -77,6 +77,7 @@ FitResult fit_surface_search(const FitSpec& spec) {
     }
   }
 
+  const long base_bound = bound;  // the two stages' count, before any rule's
   const Frame fr(spec.centring, o);
   const FewRows few(rows.size(), o);
   const FitOptions os = few.options(o);  // the search's problems
@@ -89,14 +90,18 @@ FitResult fit_surface_search(const FitSpec& spec) {
   const std::size_t step =
       points > kSearchPoints ? (points + kSearchPoints - 1) / kSearchPoints : 1;
   std::vector<Parametrization> rules = rules_of(o.parametrization);
-  // On large data the geometric rule's scattered solves cost most (on a smooth 10^6-point
-  // grid 1.4 of 2.7 s CPU, for a surface no smaller; on 10^6 ragged, unevenly sampled points
-  // at 1e-3 a third of the CPU, for no surface at all while the chord rule gives 13 x 11): it
-  // goes last, bounded by the row rules' best (the 10^5-point ragged peer set keeps its
-  // surfaces at 1e-2 ... 1e-4 with 6-16 % fewer pairs solved).
-  if (step > 1)
-    std::stable_partition(rules.begin(), rules.end(),
-                          [](Parametrization r) { return r != Parametrization::kGeometric; });
+  // The geometric rule's scattered solves cost most (on a smooth 10^6-point grid 1.4 of 2.7 s
+  // CPU, for a surface no smaller; on 10^6 ragged, unevenly sampled points at 1e-3 a third of
+  // the CPU, for no surface at all while the chord rule gives 13 x 11; on the 10^4-point
+  // example sets half the search): it goes last, bounded by the row rules' best (the
+  // 10^5-point ragged peer set keeps its surfaces at 1e-2 ... 1e-4 with 6-16 % fewer pairs
+  // solved). On small data it went first, but its count never bounded the row rules there
+  // (they ran with the bounds they had without it), so going last changes none of their
+  // searches and only narrows its own (below twice their best, see below): every example set
+  // keeps every surface at 1e-2 ... 1e-4, with up to 67 % fewer instructions
+  // (iea15mw_blade_af50 at 1e-2; docs/benchmarks.md).
+  std::stable_partition(rules.begin(), rules.end(),
+                        [](Parametrization r) { return r != Parametrization::kGeometric; });
   // On large ragged rows the chord rule goes first: rows sampled unevenly are where the index
   // says least. On 10^6 such points at 1e-3 the uniform rule, searched first, found nothing;
   // with the chord rule first its 13 x 11 bounds the others: 66 pairs instead of 82, 1.2-1.4 s
@@ -159,9 +164,13 @@ FitResult fit_surface_search(const FitSpec& spec) {
     // on large data that rule is the two-stage fit's alone.
     if (step > 1 && rule == Parametrization::kPaper) continue;
     if (rule == Parametrization::kGeometric) {
-      // Its own search (scattered parameters, geometric_search.h): first on small data, where
-      // the row rules run with the bounds they had without it; last on large data, below the
-      // row rules' best. It is kept after them where it is smaller.
+      // Its own search (scattered parameters, geometric_search.h), last: it is kept where it
+      // has fewer control points than the row rules' best. On large data it is searched
+      // below that best; on small data below twice it (and the two stages' count): its
+      // guards and smoothing make holding less monotone than the row rules', and a search
+      // below the best itself can end at a pair that fails a guard and miss a smaller one
+      // (range_image_holes of bench/scan_cases.py at 1e-2: 6 x 5 below 72, none below 36).
+      const long geo_limit = step == 1 && best ? std::min(base_bound, 2 * bound) : bound;
       if (!o.closed_v && rows.size() < static_cast<std::size_t>(o.degree_v) + 1) continue;
       searched.push_back(rule);
       // The rows' floor at chord-length positions (count_floor.h; a heuristic here too: a
@@ -171,7 +180,7 @@ FitResult fit_surface_search(const FitSpec& spec) {
       // (The rows alone first: the columns' counts only raise the product.)
       const auto geometric_out = [&](const CountFloor& cf) {
         const long at_least = static_cast<long>(cf.nu) * cf.nv;
-        return at_least >= bound || at_least > kGeometricMaxUnknowns;
+        return at_least >= geo_limit || at_least > kGeometricMaxUnknowns;
       };
       const CountFloor& crf = row_floor_of(Parametrization::kChord);
       if (geometric_out(crf) || geometric_out(floor_of(Parametrization::kChord))) {
@@ -188,7 +197,7 @@ FitResult fit_surface_search(const FitSpec& spec) {
       // small holds); where nothing holds it counts as ruled out by its floor, but not as
       // "forced": the report says how far it was searched, and claims no noise.
       const long geo_bound =
-          crf.forced ? std::min<long>(bound, static_cast<long>(points / 4)) : bound;
+          crf.forced ? std::min<long>(geo_limit, static_cast<long>(points / 4)) : geo_limit;
       long geo_pairs = 0;
       geo = search_geometric(fr, o, geo_bound, kCorrectionRounds, &geo_pairs);
       tried += geo_pairs;
