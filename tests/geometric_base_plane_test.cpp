@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -115,6 +116,26 @@ TEST(GeometricBasePlane, SearchTriesTheCoordinatePlane) {
   const FitResult f = fit_surface(rows, o);
   EXPECT_TRUE(f.report.within_tolerance);
   EXPECT_LE(test::size_of(f), b);
+}
+
+// Counts given (FitOptions::counts): where the best plane's surface misses T at the search's
+// pair, the coordinate plane's is taken, and holds.
+TEST(GeometricBasePlane, CountsGivenTakeTheCoordinatePlaneWhereTheBestMisses) {
+  const Rows rows = clipped_scan_lines();
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, 1e-3);
+  o.parametrization = Parametrization::kGeometric;
+  o.counts = std::array<int, 2>{13, 12};
+  const detail::Frame fr(rows, o);
+  const auto best = detail::geometric_at_counts(fr, o, 13, 12);
+  ASSERT_TRUE(best);
+  DeviationCheck c;
+  fr.judge(best->surface, best->u, best->v, &c, nullptr, false);
+  EXPECT_FALSE(c.within);
+  const FitResult f = fit_surface(rows, o);
+  EXPECT_EQ(f.surface.count_u, 13);
+  EXPECT_EQ(f.surface.count_v, 12);
+  EXPECT_TRUE(f.report.within_tolerance) << f.report.stop_reason;
 }
 
 }  // namespace
