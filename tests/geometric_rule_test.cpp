@@ -135,7 +135,7 @@ Rows uneven_eight() {
 }
 
 const Case kCases[] = {
-    {"clipped scan lines", clipped_scan_lines, false, 18, 16},
+    {"clipped scan lines", clipped_scan_lines, false, 15, 13},
     {"range image with a hole", range_image_with_hole, false, 15, 13},
     {"uneven rows of 700..1300", uneven_eight, false, 16, 9},
     {"ragged closed sections", ragged_sections, true, 53, 6},

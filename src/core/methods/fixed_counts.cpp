@@ -62,7 +62,21 @@ FitResult fit_at_counts(const Rows& rows, const FitOptions& o, double t0,
                       "rows, or too few control points for a closed direction)",
                   Place{.option = "counts"}, {static_cast<double>(nu), static_cast<double>(nv)});
     DeviationCheck c;
-    const PairVerdict verdict = fr.judge(g->surface, g->u, g->v, &c);
+    PairVerdict verdict = fr.judge(g->surface, g->u, g->v, &c);
+    if (!c.within) {
+      // A point beyond T: the coordinate plane's parameters (geometric_params.h), as the
+      // search tries them, where their surface holds every point or misses by less. (Where
+      // every point holds the best plane's surface is kept: the distributed fit's.)
+      std::optional<GeometricFit> a =
+          geometric_at_counts(fr, o, nu, nv, kSmoothing, BasePlane::kAxis);
+      DeviationCheck ca;
+      const PairVerdict va = a ? fr.judge(a->surface, a->u, a->v, &ca) : verdict;
+      if (a && (ca.within || va.ratio < verdict.ratio)) {
+        g = std::move(a);
+        c = ca;
+        verdict = va;
+      }
+    }
     const char* guard = failed_guard(g->surface, fr.centred_box);
     FitResult out = assemble_geometric(fr, std::move(*g), c, o);
     out.report.pairs_tried = 1;

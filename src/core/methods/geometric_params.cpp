@@ -58,7 +58,7 @@ void scale_to_unit(std::vector<double>& x) {
   for (double& t : x) t = span > 0 ? std::clamp((t - a) / span, 0.0, 1.0) : 0.0;
 }
 
-std::optional<Fractions> open_sheet(const Rows& rows) {
+std::optional<Fractions> open_sheet(const Rows& rows, BasePlane plane) {
   const std::vector<Point>& pts = rows.points();
   const std::size_t n = pts.size();
   Vector3d c = Vector3d::Zero();
@@ -74,8 +74,9 @@ std::optional<Fractions> open_sheet(const Rows& rows) {
     const auto r = rows[j];
     if (r.size() >= 2) along += r.back() - r.front();
   }
-  const std::optional<SheetFrame> frame = sheet_frame(c, cov, along, edge_centroid(rows[0], false),
-                                                      edge_centroid(rows[rows.size() - 1], false));
+  const std::optional<SheetFrame> frame =
+      sheet_frame(c, cov, along, edge_centroid(rows[0], false),
+                  edge_centroid(rows[rows.size() - 1], false), plane);
   if (!frame) return std::nullopt;
   Fractions f;
   f.u.resize(n);
@@ -159,12 +160,24 @@ std::optional<Fractions> swept_axis(const Rows& rows) {
 }  // namespace
 
 std::optional<SheetFrame> sheet_frame(const Point& mean, const Eigen::Matrix3d& cov, Point along,
-                                      const Point& first, const Point& last) {
+                                      const Point& first, const Point& last, BasePlane plane) {
   Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
   if (es.info() != Eigen::Success || !(es.eigenvalues()[1] > 0)) return std::nullopt;
-  const Vector3d normal = es.eigenvectors().col(0);
+  Vector3d normal = es.eigenvectors().col(0);
+  if (plane == BasePlane::kAxis) {
+    int axis = 0;
+    normal.cwiseAbs().maxCoeff(&axis);
+    const Vector3d e = Vector3d::Unit(axis);
+    // The angle between the planes (sin of it: the normals' cross product).
+    if (normal.cross(e).norm() < std::sin(kSamePlaneAngle)) return std::nullopt;
+    normal = e;
+  }
   along -= along.dot(normal) * normal;
-  if (!(along.norm() > 0)) along = es.eigenvectors().col(2);
+  if (!(along.norm() > 0)) {
+    along = es.eigenvectors().col(2);
+    along -= along.dot(normal) * normal;  // (kBest: already in the plane)
+    if (!(along.norm() > 0)) return std::nullopt;
+  }
   along.normalize();
   Vector3d across = normal.cross(along);
   // v grows with the rows' order.
@@ -181,11 +194,12 @@ void sheet_positions(const SheetFrame& f, std::span<const Point> pts, std::span<
   }
 }
 
-std::optional<Fractions> base_surface_fractions(const Rows& rows, bool closed_u, bool closed_v) {
-  if (rows.size() < 2 || closed_v) return std::nullopt;
+std::optional<Fractions> base_surface_fractions(const Rows& rows, bool closed_u, bool closed_v,
+                                                BasePlane plane) {
+  if (rows.size() < 2 || closed_v || (closed_u && plane != BasePlane::kBest)) return std::nullopt;
   for (std::size_t j = 0; j < rows.size(); ++j)
     if (rows[j].empty()) return std::nullopt;
-  return closed_u ? swept_axis(rows) : open_sheet(rows);
+  return closed_u ? swept_axis(rows) : open_sheet(rows, plane);
 }
 
 void project_parameters(const Surface& s, const Rows& rows, std::vector<double>& u,

@@ -26,8 +26,25 @@ struct Fractions {
 struct SheetFrame {
   Point c, along, across;
 };
+
+/// The plane an open sheet's parameters are projections onto (base_surface_fractions()).
+/// kBest: the best plane of the points (least squares). kAxis: the coordinate plane nearest
+/// to it (its normal the coordinate axis nearest the best plane's normal): where the data is
+/// a height field over that plane, projecting onto it gives each point the parameters of
+/// the function z = f(x, y) (or x = f(y, z), y = f(z, x)), the residual along that axis
+/// alone. A tilted best plane shears the height field: its slopes grow on one side (on
+/// bench/scan_cases.py's clipped_scan_lines, tilted 12 degrees, the worst residual at 13 x 13
+/// is 1.5 T over the best plane and 0.93 T over the xy plane; docs/method.md 7.9).
+enum class BasePlane { kBest, kAxis };
+
+/// Planes within this angle (radians) of each other give the same parameters, in effect:
+/// kAxis is not offered where the best plane is that near to its coordinate plane.
+inline constexpr double kSamePlaneAngle = 1e-3;
+
+/// nullopt also where `plane` is kAxis and the best plane is within kSamePlaneAngle of it.
 std::optional<SheetFrame> sheet_frame(const Point& mean, const Eigen::Matrix3d& cov, Point along,
-                                      const Point& first, const Point& last);
+                                      const Point& first, const Point& last,
+                                      BasePlane plane = BasePlane::kBest);
 /// Each point's position along and across the sheet (before the scaling to [0, 1] over the
 /// data: (t - min) / (max - min), clamped).
 void sheet_positions(const SheetFrame& f, std::span<const Point> pts, std::span<double> u,
@@ -44,8 +61,10 @@ void sheet_positions(const SheetFrame& f, std::span<const Point> pts, std::span<
 ///   first point's angle); v = the distance along the centroids' path plus the point's
 ///   height above its row's plane, scaled to [0, 1].
 /// nullopt where no base surface applies: rows closed across, fewer than 2 rows, or data
-/// that spans no plane.
-std::optional<Fractions> base_surface_fractions(const Rows& rows, bool closed_u, bool closed_v);
+/// that spans no plane. `plane` (open rows only; kAxis with closed rows: nullopt): the
+/// sheet's plane, above.
+std::optional<Fractions> base_surface_fractions(const Rows& rows, bool closed_u, bool closed_v,
+                                                BasePlane plane = BasePlane::kBest);
 
 /// Parameter correction: each point's (u, v) moved to the closest point of `s` near it (up to
 /// `steps` Gauss-Newton steps in (u, v), each at most one knot span, clamped into an open

@@ -148,13 +148,23 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
                                              int corrections, long* pairs) {
   long tried = 0;
   std::optional<GeometricFit> g = search_geometric_counted(fr, o, bound, corrections, tried);
+  // The coordinate plane's parameters, below the count found (geometric_params.h).
+  const long found = g ? static_cast<long>(g->surface.count_u) * g->surface.count_v : bound;
+  std::optional<GeometricFit> a =
+      search_geometric_counted(fr, o, std::min(bound, found), corrections, tried, BasePlane::kAxis);
+  if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < found) {
+    a->stop += "; parameters from the coordinate plane nearest the best plane";
+    g = std::move(a);
+  }
+  if (g) g->tried = tried;
   if (pairs) *pairs = tried;
   return g;
 }
 
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
-                                                     long bound, int corrections, long& tried) {
-  std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
+                                                     long bound, int corrections, long& tried,
+                                                     BasePlane plane) {
+  std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v, plane);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
   const std::size_t points = fr.centred.total_points();
@@ -305,8 +315,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
 }
 
 std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOptions& o, int nu,
-                                                int nv, double smoothing) {
-  std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v);
+                                                int nv, double smoothing, BasePlane plane) {
+  std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v, plane);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
   auto sp = std::make_unique<ScatteredProblem>(fr.centred, spec, std::move(f->u), std::move(f->v));

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "geometric_params.h"
 #include "scattered_lsq.h"
 #include "search_frame.h"
 
@@ -51,16 +52,22 @@ inline constexpr long kGeometricMaxUnknowns = 20000;
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections = kCorrectionRounds,
                                              long* pairs = nullptr);
-/// search_geometric(), adding the pairs solved to `tried` as it goes.
+/// The search on an open sheet: over the best plane's parameters, then over its coordinate
+/// plane's (BasePlane::kAxis, geometric_params.h) below the count found; the fewer control
+/// points are kept (a tie: the best plane's).
+/// search_geometric(), adding the pairs solved to `tried` as it goes; one base plane.
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
-                                                     long bound, int corrections, long& tried);
+                                                     long bound, int corrections, long& tried,
+                                                     BasePlane plane = BasePlane::kBest);
 
 /// The rule's surface at exactly (nu, nv) (FitOptions::counts), holding or not; nullopt where
 /// the rule has no base surface for the rows. The smoothness weight starts at `smoothing`
 /// (relative, scattered_lsq.h) and is lowered while the surface misses T (GeometricFit::
 /// smoothing says which it was made with).
+/// `plane`: the base plane of an open sheet (geometric_params.h).
 std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOptions& o, int nu,
-                                                int nv, double smoothing = kSmoothing);
+                                                int nv, double smoothing = kSmoothing,
+                                                BasePlane plane = BasePlane::kBest);
 
 /// The result of a surface of the rule: assemble() with the shape measured on the surface
 /// (the fold on columns sampled evenly across the domain; the rows are no iso-curves, so
