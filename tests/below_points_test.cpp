@@ -363,8 +363,9 @@ TEST(BelowPoints, AFarMissIsSaidWithTheNearestPairAndWhatTheRowsNeed) {
   // geometric rule's passes, the stretched one included.
   for (const char* said :
        {"no surface below the points held under the rules searched (as measured, not a proof",
-        "the row rules found no smaller pair", "each row's curve is the surface at that row's v",
-        "the most demanding", "with u and v stretched where the nearest pair missed T"})
+        "the row rules' search gave nothing smaller",
+        "each row's curve is the surface at that row's v", "the most demanding",
+        "with u and v stretched where the nearest pair missed T"})
     EXPECT_NE(f.report.stop_reason.find(said), std::string::npos)
         << said << ": " << f.report.stop_reason;
 }

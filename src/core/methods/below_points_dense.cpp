@@ -15,8 +15,8 @@ constexpr int kCells = 8192;
 
 }  // namespace
 
-std::vector<double> miss_ratios(const Frame& fr, const ScatteredSpec& spec, const Tried& t,
-                                int nu, int nv) {
+std::vector<double> miss_ratios(const Frame& fr, const ScatteredSpec& spec, const Tried& t, int nu,
+                                int nv) {
   const ScatteredProblem sp(fr.centred, spec, t.fu, t.fv);
   const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
   std::vector<double> ratio(u.size(), 0.0);

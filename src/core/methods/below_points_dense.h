@@ -13,8 +13,8 @@ namespace sfit::detail {
 
 /// Each point's deviation from the pair `t` (nu x nv, solved at t.fu, t.fv with `spec`) as
 /// its worst |S - D| / T over the axes with T > 0, in rows.points() order.
-std::vector<double> miss_ratios(const Frame& fr, const ScatteredSpec& spec, const Tried& t,
-                                int nu, int nv);
+std::vector<double> miss_ratios(const Frame& fr, const ScatteredSpec& spec, const Tried& t, int nu,
+                                int nv);
 
 /// Stretches the fractions `fu` (all of them, one map) where the points with `ratio` > 1 are:
 /// the map's slope is at least 1 everywhere and at least a point's miss ratio within one knot

@@ -50,26 +50,26 @@ bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, Fit
     const std::string note = rows_alone_note(fr.centred, o, fr.roundoff);
     const std::string need = note.empty() ? rows_need : note;
     if (!above) {
-      r.report.stop_reason +=
-          "; it folds, and no unfolded surface below the points: " + why +
-          (need.empty() ? "" : "; " + need);
+      r.report.stop_reason += "; it folds, and no unfolded surface below the points: " + why +
+                              (need.empty() ? "" : "; " + need);
       return false;
     }
     // What was measured, under the rules searched (no proof that no surface below the points
-    // exists): the row rules' search found no smaller pair, and where each row's curve is the
-    // surface at its v, nu follows what the rows need alone (measured at chord length, a
-    // proxy: the rules' positions differ); the geometric rule's pairs below the points did
-    // not hold.
+    // exists): the search of the row rules gave nothing smaller (its reason comes first), and
+    // where each row's curve is the surface at its v, nu follows what the rows need alone
+    // (measured at chord length, a proxy: the rules' positions differ); the geometric rule's
+    // pairs below the points did not hold.
     r.report.stop_reason +=
         "; more control points than data points: at this T no surface below the points held "
-        "under the rules searched (as measured, not a proof that none exists): the row rules "
-        "found no smaller pair" +
-        (need.empty() ? std::string()
+        "under the rules searched (as measured, not a proof that none exists): the row rules' "
+        "search gave nothing smaller (as said first)" +
+        (note.empty() ? std::string()
                       : " (under a row rule each row's curve is the surface at that row's v, so "
                         "along u it needs about what a row alone needs at its positions; "
                         "measured at chord length: " +
-                            need + ")") +
-        "; the geometric rule below the points: " + why;
+                            note + ")") +
+        "; the geometric rule below the points: " + why +
+        (note.empty() && !rows_need.empty() ? "; " + rows_need : "");
     return false;
   }
   DeviationCheck c;
