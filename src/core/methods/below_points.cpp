@@ -10,6 +10,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "below_points_dense.h"
 #include "below_points_pair.h"
 #include "fit_frame.h"
 #include "fit_monitor.h"
@@ -56,8 +57,21 @@ constexpr double kWarpedPlane = kCalm;
 // of 10 ... 40x (1e-3) only to 5 ... 35x, at about 2 s a fit.
 constexpr double kWarpReach = 2 * kLadderReach;
 
-std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long points,
-                                   std::string& why, Budget& budget, bool warp, double& nearest);
+// The stretched pass's rounds (each from the last one's nearest pair, while it missed fewer).
+constexpr int kDenseRounds = 3;
+
+// The nearest pair a pass tried that did not hold (its miss, the surface and fractions).
+struct Nearest {
+  double ratio = -1;  // -1: no pair tried (no base surface, or none affordable)
+  int nu = 0, nv = 0;
+  Tried t;
+};
+
+// One pass of the fallback from the fractions of `st` (nullopt: no base surface); `label`
+// names its parameters in the stop reason (empty for the base plane's).
+std::optional<GeometricFit> search(const Frame& fr, long points, std::optional<Setup> st,
+                                   const std::string& label, double plane, bool calmer,
+                                   std::string& why, Budget& budget, Nearest& nearest);
 
 }  // namespace
 
@@ -76,31 +90,63 @@ std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& 
                                              std::string& why, double work) {
   Budget budget{work > 0 ? work
                          : std::max(kWorkFloor, kWorkPerPoint * static_cast<double>(points))};
-  double nearest = HUGE_VAL;
-  std::optional<GeometricFit> g = search(fr, o, points, why, budget, false, nearest);
+  Nearest first, warped;
+  std::optional<GeometricFit> g =
+      search(fr, points, prepare(fr, o, false), "", 0, false, why, budget, first);
   // Where nothing held from the base plane's parameters, an open sheet's u warped by the
   // rows' chord length, in what is left of the same budget.
   if (g || budget.over() || o.closed_u || o.closed_v) return g;
   // (Not where no pair could be tried: the warped pass has the same base and the same costs.)
-  if (nearest < 0 || (nearest > kWarpReach && nearest < HUGE_VAL)) return g;
-  std::string warped;
-  g = search(fr, o, points, warped, budget, true, nearest);
-  if (!g) why += "; with u warped by the rows' chord length: " + warped;
+  const double nearest = first.ratio;
+  if (nearest < 0) return g;
+  std::string note;
+  std::optional<Setup> st;
+  if (!(nearest > kWarpReach && nearest < HUGE_VAL)) {
+    st = prepare(fr, o, true);
+    const double plane = st && st->normal ? kWarpedPlane : 0;
+    g = search(fr, points, std::move(st), " (u warped by the rows' chord length)", plane, false,
+               note, budget, warped);
+    if (g) return g;
+    why += "; with u warped by the rows' chord length: " + note;
+  }
+  // Then the base plane's fractions (as the first pass's nearest pair corrected them)
+  // stretched where that pair missed T (below_points_dense.h), again from each round's nearest
+  // pair while it misses T by less, at most kDenseRounds rounds, in what is left of the budget.
+  Nearest from = std::move(first);
+  for (int round = 1; round <= kDenseRounds && !budget.over() && from.ratio > 1 &&
+                      from.ratio < HUGE_VAL && !from.t.fu.empty();
+       ++round) {
+    st = prepare(fr, o, false);
+    if (!st) break;
+    const std::vector<double> miss = miss_ratios(fr, st->spec, from.t, from.nu, from.nv);
+    st->f.u = from.t.fu;
+    st->f.v = from.t.fv;
+    stretch_where_missed(miss, from.nu - o.degree_u, st->f.u);
+    stretch_where_missed(miss, from.nv - o.degree_v, st->f.v);
+    Nearest next;
+    g = search(fr, points, std::move(st),
+               " (u and v stretched where the nearest pair missed T, " + std::to_string(round) +
+                   (round == 1 ? " round)" : " rounds)"),
+               0, true, note, budget, next);
+    if (g) return g;
+    if (round == 1) why += "; with u and v stretched where the nearest pair missed T";
+    why += (round == 1 ? ": " : "; round " + std::to_string(round) + ": ") + note;
+    if (!(next.ratio < from.ratio)) break;
+    from = std::move(next);
+  }
   return g;
 }
 
 namespace {
 
-std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long points,
-                                   std::string& why, Budget& budget, bool warp,
-                                   double& nearest_out) {
-  nearest_out = -1;  // no pair tried (no base surface, or none affordable)
-  std::optional<Setup> st = prepare(fr, o, warp);
+std::optional<GeometricFit> search(const Frame& fr, long points, std::optional<Setup> st,
+                                   const std::string& label, double plane, bool calmer,
+                                   std::string& why, Budget& budget, Nearest& nearest_out) {
+  nearest_out.ratio = -1;
   if (!st) {
     why = "no base surface for the geometric rule";
     return std::nullopt;
   }
-  const double plane = warp && st->normal ? kWarpedPlane : 0;
   const ScatteredSpec& spec = st->spec;
   const Fractions* f = &st->f;
   const std::optional<Point>& normal = st->normal;
@@ -145,6 +191,7 @@ std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long po
     if (t.ratio < nearest) {
       nearest = t.ratio;
       nearest_pair = {nu, nv};
+      nearest_out.t = t;
     }
   };
   // The surface at a product: the first ratio whose pair holds.
@@ -155,7 +202,7 @@ std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long po
       if (failed.count({nu, nv})) continue;  // tried before, and it failed
       if (auto h = held.find({nu, nv}); h != held.end()) return std::pair{h->first, h->second};
       if (budget.over()) return std::nullopt;  // not tried: the budget ended
-      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget, plane);
+      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget, plane, calmer);
       ++tried;
       if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, t.holds);
       if (t.holds) {
@@ -215,7 +262,7 @@ std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long po
       if (static_cast<long>(nu) * nv >= points || sp.cost(nu, nv) > kBelowPointsCost ||
           failed.count({nu, nv}))
         continue;
-      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget, plane);
+      Tried t = attempt(fr, spec, f->u, f->v, nu, nv, normal, budget, plane, calmer);
       ++tried;
       ++ladder;
       if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, t.holds);
@@ -250,7 +297,9 @@ std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long po
           "most " +
           std::to_string(static_cast<int>(kLadderReach)) + "x";
     if (nearest <= 1) why += "; some held T at the points but left the data's box or folded";
-    nearest_out = nearest;
+    nearest_out.ratio = nearest;
+    nearest_out.nu = nearest_pair.first;
+    nearest_out.nv = nearest_pair.second;
     if (nearest > 1 && nearest < HUGE_VAL) {
       char miss[32];
       std::snprintf(miss, sizeof miss, "%.3g", nearest);
@@ -292,8 +341,9 @@ std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long po
         cut = cut || budget.over();
         break;
       }
-      Tried t =
-          h != held.end() ? h->second : attempt(fr, spec, f->u, f->v, a, b, normal, budget, plane);
+      Tried t = h != held.end()
+                    ? h->second
+                    : attempt(fr, spec, f->u, f->v, a, b, normal, budget, plane, calmer);
       if (h == held.end()) {
         ++tried;
         ++descent;
@@ -323,7 +373,7 @@ std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long po
   const long covered = std::count(cells.begin(), cells.end(), 1);
   g.stop =
       std::string(minimal ? "minimal below the points" : "below the points") +
-      ": the geometric rule" + std::string(warp ? " (u warped by the rows' chord length)" : "") +
+      ": the geometric rule" + label +
       " with a calm net where the data is not "
       "(data in " +
       std::to_string(covered) + " of the " + std::to_string(cells.size()) +
@@ -339,65 +389,5 @@ std::optional<GeometricFit> search(const Frame& fr, const FitOptions& o, long po
 }
 
 }  // namespace
-
-bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r,
-                          bool rows_tell) {
-  const long points = static_cast<long>(fr.centred.total_points());
-  const bool above = static_cast<long>(r.surface.count_u) * r.surface.count_v > points;
-  const bool folded = o.fold_guard && r.report.fold > kFoldRelative * fr.box.diagonal();
-  if ((!above && !folded) || (o.tolerance.array() == 0).all()) return false;
-  // A rule the caller named is kept (the fallback is the geometric rule's): only where sfit
-  // chooses the rule (auto, fewest) or the geometric rule was asked for.
-  const Parametrization p = o.parametrization;
-  if (p != Parametrization::kAuto && p != Parametrization::kFewest &&
-      p != Parametrization::kGeometric) {
-    if (above)
-      r.report.stop_reason +=
-          std::string("; more control points than data points under the rule asked for: ") +
-          (forced ? "T forces interpolation, the data's noise or its jumps between points exceed T"
-                  : "no pair with fewer held T at every point (the default rule may fit below "
-                    "the points)");
-    return false;
-  }
-  std::string rows_need;
-  if (forced || (rows_tell && t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need))) {
-    if (above) {
-      r.report.stop_reason +=
-          "; more control points than data points: T forces interpolation, "
-          "the data's noise or its jumps between points exceed T";
-      if (!rows_need.empty()) r.report.stop_reason += " (" + rows_need + ")";
-    }
-    return false;
-  }
-  progress_phase("below the points", 1);
-  std::string why;
-  std::optional<GeometricFit> g = fit_below_points(fr, o, points, why);
-  progress_advance(1);
-  if (!g) {
-    // What the rows alone need, over many of them: numbers a user can check against the
-    // points (where nearly all are needed, no surface far below the points is in sight).
-    const std::string note = rows_alone_note(fr.centred, o, fr.roundoff);
-    r.report.stop_reason +=
-        (above ? "; more control points than data points: "
-               : "; it folds, and no unfolded surface below the points: ") +
-        why + (note.empty() ? (rows_need.empty() ? "" : "; " + rows_need) : "; " + note);
-    return false;
-  }
-  DeviationCheck c;
-  fr.judge(g->surface, g->u, g->v, &c, nullptr, false);
-  const long tried = g->tried;
-  std::string stop = g->stop + "; in place of " + std::to_string(r.surface.count_u) + " x " +
-                     std::to_string(r.surface.count_v) + " (" + r.report.stop_reason + ")";
-  FitResult out = assemble_geometric(fr, std::move(*g), c, o);
-  FitReport& rep = out.report;
-  rep.pairs_tried = r.report.pairs_tried + tried;
-  rep.rules_searched = r.report.rules_searched;
-  rep.stop_reason = std::move(stop);
-  rep.row_counts = std::move(r.report.row_counts);
-  rep.column_counts = std::move(r.report.column_counts);
-  rep.solves = r.report.solves;
-  r = std::move(out);
-  return true;
-}
 
 }  // namespace sfit::detail

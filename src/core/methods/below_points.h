@@ -31,9 +31,12 @@ inline constexpr double kBelowPointsCost = 1e9;
 /// (geometric_fold()). Within a work budget in flops tied to the points: where it or the
 /// descent's cap ends first, the result's stop reason says "below the points" without
 /// "minimal". Where the largest products tried first all fail, a ladder of halved counts
-/// along u and along v (largest product first) before giving up. nullopt where none held;
-/// `why` says what was tried. `work`: the budget in flops where > 0 (tests), else the
-/// default (kWorkFloor or kWorkPerPoint a point, whichever is more).
+/// along u and along v (largest product first) before giving up. Where nothing held from the
+/// base plane's parameters, an open sheet's second pass (u warped by the rows' chord length,
+/// where the first missed by at most 6x) and third (u and v stretched where the nearest pair
+/// missed, below_points_dense.h, up to 3 rounds), in what is left of the budget. nullopt where none
+/// held; `why` says what was tried. `work`: the budget in flops where > 0 (tests), else the default
+/// (kWorkFloor or kWorkPerPoint a point, whichever is more).
 std::optional<GeometricFit> fit_below_points(const Frame& fr, const FitOptions& o, long points,
                                              std::string& why, double work = 0);
 

@@ -15,6 +15,10 @@ namespace {
 
 // The parameters are corrected where the worst point misses T by at most this factor.
 constexpr double kCorrectReach = 3;
+// attempt()'s `calmer` weights: the smoothness raised 10, 100 and 1000 times, each corrected
+// (up to kCorrectionRounds) where it is calm and unfolded and misses T by at most this factor.
+constexpr double kCalmerReach = 2;
+constexpr double kCalmerMost = 1e3;
 // The work of one solve at (nu, nv) over `points` points (Budget).
 double solve_work(const ScatteredProblem& sp, int nu, int nv, bool calmed, std::size_t points) {
   return (calmed ? 2 : 1) * sp.cost(nu, nv) + kPointWork * static_cast<double>(points);
@@ -63,7 +67,7 @@ Tried solve_once(const ScatteredProblem& sp, const Frame& fr, int nu, int nv,
 // One pair (below_points_pair.h).
 Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<double>& fu0,
               const std::vector<double>& fv0, int nu, int nv, const std::optional<Point>& normal,
-              Budget& budget, double plane) {
+              Budget& budget, double plane, bool calmer) {
   Tried best;
   const double pass = kPointWork * static_cast<double>(fr.centred.total_points());
   std::vector<double> fu = fu0, fv = fv0;
@@ -126,6 +130,39 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
           best.corrections += 1;
           best.holds = true;
         }
+      }
+    }
+    // The stretched pass (calmer): where T held but a guard failed, calmer weights than the
+    // search's, each corrected by projection (at that weight) while it stays calm and unfolded.
+    for (double w = kSmoothing * 10; calmer && !best.holds && w <= kSmoothing * kCalmerMost;
+         w *= 10) {
+      Surface s;
+      budget.spent += work;
+      if (!calm_solve(sp, nu, nv, w, s, normal, plane)) break;
+      std::vector<double> cu = u, cv = v;
+      PairVerdict verdict = fr.judge(s, cu, cv, nullptr, nullptr, false);
+      for (int round = 0; guarded(s, cu, cv); ++round) {
+        if (verdict.holds) {
+          best.s = std::move(s);
+          best.ratio = verdict.ratio;
+          best.smoothing = w;
+          best.holds = true;
+          if (round > 0) {
+            best.fu = fu;
+            best.fv = fv;
+            best.corrections += round;
+          }
+          break;
+        }
+        if (round == kCorrectionRounds || verdict.ratio > kCalmerReach || budget.over()) break;
+        budget.spent += pass + work;
+        project_parameters(s, fr.centred, cu, cv, kNewtonSteps, fr.threads);
+        to_fractions(s, cu, cv, fu, fv);
+        const ScatteredProblem again(fr.centred, spec, fu, fv);
+        if (!calm_solve(again, nu, nv, w, s, normal, plane)) break;
+        cu = again.u_at(nu);
+        cv = again.v_at(nv);
+        verdict = fr.judge(s, cu, cv, nullptr, nullptr, false);
       }
     }
     // Where the height alone was calmed and a guard failed: the calm term on every axis.

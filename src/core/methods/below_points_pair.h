@@ -47,9 +47,13 @@ struct Tried {
 /// `plane` > 0 (relative, as the smoothness): the coordinates in the base plane (all but the
 /// height along `normal`) are solved with at least this smoothness (the warped pass of
 /// fit_below_points(): its columns must stay straight in the plane); 0: as the search.
+/// `calmer` (the stretched pass, below_points_dense.h): where T held but a guard failed after
+/// the weights above, calmer weights than the search's too (10, 100, 1000 times), each
+/// corrected by projection at that weight while it passes the guards and misses T by at most
+/// 2x.
 Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<double>& fu0,
               const std::vector<double>& fv0, int nu, int nv, const std::optional<Point>& normal,
-              Budget& budget, double plane = 0);
+              Budget& budget, double plane = 0, bool calmer = false);
 
 /// What every pair below the points is solved from: the base surface's fractions (u warped by
 /// warp_by_chord() where `warp`), the spec and an open sheet's height direction (the normal of
