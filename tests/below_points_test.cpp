@@ -240,9 +240,10 @@ TEST(BelowPoints, RowsShorterThanTheDegreeDoNotForceInterpolation) {
     EXPECT_EQ(f.report.stop_reason.rfind("minimal below the points", 0), 0u)
         << f.report.stop_reason;
     // The plain wave: the largest pairs below the points miss T, the ladder finds one that holds.
-    if (sheet == 1)
+    if (sheet == 1) {
       EXPECT_NE(f.report.stop_reason.find("a ladder of halved counts"), std::string::npos)
           << f.report.stop_reason;
+    }
     EXPECT_EQ(f.report.stop_reason.find("T forces interpolation"), std::string::npos)
         << f.report.stop_reason;
     expect_holds_unfolded(f, rows, o.tolerance);
