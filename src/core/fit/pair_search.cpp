@@ -28,6 +28,10 @@ std::pair<int, int> descend(int nu, int nv, const PairRange& r, PairOracle& orac
       --nu;
     } else if (ok(nu, nv - 1)) {
       --nv;
+    } else if (r.reach >= 2 && ok(nu - 2, nv)) {
+      nu -= 2;
+    } else if (r.reach >= 2 && ok(nu, nv - 2)) {
+      nv -= 2;
     } else {
       return {nu, nv};
     }

@@ -39,6 +39,10 @@ struct PairRange {
   /// every pair. Must be monotone: a pair with fewer control points along u is affordable
   /// where one with more is. The search caps each column's nu at the largest affordable one.
   std::function<bool(int, int)> affordable = {};
+  /// How many fewer along u or v the last descent (descend()) tries where one fewer fails:
+  /// 1, or 2 where holding is not quite monotone in a count (a pair can fail between two
+  /// that hold) and the result's minimality is judged by the same oracle.
+  int reach = 1;
 };
 
 struct PairChoice {
@@ -60,7 +64,8 @@ struct PairChoice {
 PairChoice search_pairs(const PairRange& range, long bound, PairOracle& holds);
 
 /// From a pair that holds under `oracle`, steps to (nu - 1, nv) or (nu, nv - 1) while either
-/// holds (only pairs `worth_trying` are asked). Returns the pair reached.
+/// holds, else (range.reach = 2) to (nu - 2, nv) or (nu, nv - 2) (only pairs `worth_trying`
+/// are asked). Returns the pair reached: one fewer in either direction fails there.
 std::pair<int, int> descend(int nu, int nv, const PairRange& range, PairOracle& oracle,
                             const std::function<bool(int, int)>& worth_trying = {});
 

@@ -148,8 +148,15 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
                                              int corrections, long* pairs) {
   long tried = 0;
   std::optional<GeometricFit> g = search_geometric_counted(fr, o, bound, corrections, tried);
-  // The coordinate plane's parameters, below the count found (geometric_params.h).
-  const long found = g ? static_cast<long>(g->surface.count_u) * g->surface.count_v : bound;
+  // The coordinate plane's parameters, below the count found (geometric_params.h): only
+  // where the best plane's found one. Where it found none below the bound the coordinate
+  // plane's search was as long and found none either on every example set and generated
+  // case (topobathy at 1e-3: 53 % more instructions for the whole fit, for nothing).
+  if (!g) {
+    if (pairs) *pairs = tried;
+    return g;
+  }
+  const long found = static_cast<long>(g->surface.count_u) * g->surface.count_v;
   std::optional<GeometricFit> a =
       search_geometric_counted(fr, o, std::min(bound, found), corrections, tried, BasePlane::kAxis);
   if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < found) {

@@ -49,10 +49,15 @@ PairChoice search_on_sample(const Frame& fr, const FewRows& few, const TensorPro
     if (!s) return PairVerdict{false, HUGE_VAL};
     return fr.judge(*s, sp.u_at(nu), sp.v_at(few.nv(nv)), nullptr, &sample);
   });
-  const PairRange sample_range{
-      sp.min_u(), sp.max_u(), few.min_v(sp.min_v()), few.max_v(sp.max_v()), [&](int nu, int nv) {
-        return sp.cost(nu, few.nv(nv)) <= solve_budget(sample.total_points());
-      }};
+  const PairRange sample_range{sp.min_u(),
+                               sp.max_u(),
+                               few.min_v(sp.min_v()),
+                               few.max_v(sp.max_v()),
+                               [&](int nu, int nv) {
+                                 return sp.cost(nu, few.nv(nv)) <=
+                                        solve_budget(sample.total_points());
+                               },
+                               range.reach};
   const PairChoice c = search_pairs(sample_range, bound, on_sample);
   tried += on_sample.tried();
   PairChoice choice;
