@@ -248,6 +248,31 @@ TEST(SurfaceSearch, MinimaxOfALineToAParabolaEquioscillatesAtOneEighth) {
   EXPECT_TRUE(automatic.report.within_tolerance);
 }
 
+// The same at sizes 1e100 and 1e-100 (the accepted range of coordinates): the LP works in
+// units of a power of two near the residuals, so its answer is the unit case's times the size
+// (before, CLP aborted the process on bounds beyond 1e100).
+TEST(SurfaceSearch, MinimaxIsScaleFree) {
+  for (double size : {1e100, 1e-100}) {
+    Rows rows;
+    for (int j = 0; j < 3; ++j) {
+      std::vector<Point> row;
+      for (int k = 0; k <= 40; ++k)
+        row.emplace_back(size * k / 40.0, size * j, size * (k / 40.0) * (k / 40.0));
+      rows.add_row(row);
+    }
+    FitOptions o;
+    o.degree_u = 1;
+    o.degree_v = 1;
+    o.parametrization = Parametrization::kUniform;
+    o.tolerance = size * Point(1, 1, 0.14);
+    o.counts = std::array<int, 2>{2, 2};
+    o.norm = FitNorm::kLinf;
+    const FitResult linf = fit_surface(rows, o);
+    EXPECT_TRUE(linf.report.within_tolerance) << size;
+    EXPECT_NEAR(linf.report.max_deviation.z() / size, 0.125, 1e-9) << size;
+  }
+}
+
 TEST(SurfaceSearch, NamesOfMethodsAndNormsRoundTrip) {
   for (FitMethod m : {FitMethod::kSurface, FitMethod::kSfit01}) {
     FitMethod back{};

@@ -70,6 +70,11 @@ bool minimax_axis(const Design& d, std::vector<double>& x, const std::vector<dou
   double worst = 0;
   for (double e : r) worst = std::max(worst, std::abs(e));
   if (worst <= tol) return true;  // least squares holds this axis already
+  // The LP in units of a power of two near the worst residual where that is far from 1 (data
+  // of size 1e100 or 1e-100): CLP asserts on bounds beyond 1e100 and works to absolute
+  // tolerances. A power of two scales exactly; data of ordinary size keeps its LP, bit for bit.
+  const int e = std::ilogb(worst);
+  const double unit = e > 32 || e < -32 ? std::ldexp(1.0, e) : 1.0;
   // Unknowns: the change dx of the coefficients (free), and t >= 0; minimise t.
   ClpSimplex lp;
   lp.setLogLevel(0);
@@ -102,8 +107,8 @@ bool minimax_axis(const Design& d, std::vector<double>& x, const std::vector<dou
         idx.push_back(n);
         val.push_back(sign);
         starts.push_back(static_cast<CoinBigIndex>(idx.size()));
-        lo.push_back(sign < 0 ? -COIN_DBL_MAX : -r0[k]);
-        hi.push_back(sign < 0 ? -r0[k] : COIN_DBL_MAX);
+        lo.push_back(sign < 0 ? -COIN_DBL_MAX : -r0[k] / unit);
+        hi.push_back(sign < 0 ? -r0[k] / unit : COIN_DBL_MAX);
       }
       active[k] = 1;
     }
@@ -123,9 +128,9 @@ bool minimax_axis(const Design& d, std::vector<double>& x, const std::vector<dou
     if (!lp.isProvenOptimal()) lp.primal();
     if (!lp.isProvenOptimal()) return false;
     const double* sol = lp.primalColumnSolution();
-    const double t = sol[n];
+    const double t = sol[n] * unit;
     if (t > tol) return false;  // a subset's minimax error bounds the whole's from below
-    for (int i = 0; i < n; ++i) xt[i] = x[i] + sol[i];
+    for (int i = 0; i < n; ++i) xt[i] = x[i] + sol[i] * unit;
     residuals(d, xt, data, r);
     std::vector<std::size_t> missed;
     double all = 0;
