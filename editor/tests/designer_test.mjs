@@ -125,7 +125,7 @@ test("a point typed next to its neighbour is warned about", async () => {
   const v = await version();
   await page.click("#setPoint");
   await settled(v + 1);
-  await page.waitForFunction(() => /row 4, point 3 is .* from row 4, point 2/.test(document.getElementById("warn").textContent), { timeout: 10000 });
+  await page.waitForFunction(() => /row 4, point 3 is .* from row 4, point 2/.test(document.getElementById("warn").textContent), { timeout: 30000 });
   await consistent("after the typed neighbour");
   const v2 = await version();
   await page.click("#undo");
@@ -208,7 +208,7 @@ test("legends for deviation and curvature; zebra stripe controls; the control ne
   });
   assert.ok(target, "a control point away from the data points");
   await page.mouse.click(target.x, target.y);
-  await page.waitForFunction(() => /control point \(\d+, \d+\)/.test(document.getElementById("message").textContent), { timeout: 5000 });
+  await page.waitForFunction(() => /control point \(\d+, \d+\)/.test(document.getElementById("message").textContent), { timeout: 30000 });
   await page.click("#net");
   assert.deepEqual(errors, []);
 });
@@ -252,7 +252,7 @@ test("a tab closed mid-drag leaves the session at a full fit", async () => {
   await page3.mouse.down();
   for (let k = 1; k <= 8; k++) { await page3.mouse.move(s.x + 4 * k, s.y - 6 * k); await sleep(10); }
   const seen = await page3.waitForFunction(() => window.sfitEditor.state.dragging && !window.sfitEditor.state.final,
-    { timeout: 10000 }).then(() => null, async () => page3.evaluate(() => JSON.stringify({
+    { timeout: 30000 }).then(() => null, async () => page3.evaluate(() => JSON.stringify({
     drag: window.sfitEditor.dragging(), sel: window.sfitEditor.selected(), moves: window.sfitEditor.moves.length,
     st: [window.sfitEditor.state.version, window.sfitEditor.state.dragging, window.sfitEditor.state.final],
     msg: document.getElementById("message").textContent }))); 
@@ -272,7 +272,7 @@ test("a tab closed mid-drag leaves the session at a full fit", async () => {
   assert.notDeepEqual(st.rows[5][3], st0.rows[5][3]);
   assert.deepEqual(errors3, []);
   // The first page catches up by itself (it asks for the version while idle).
-  await page.waitForFunction((v) => window.sfitEditor.state.version === v, { timeout: 10000 }, st.version);
+  await page.waitForFunction((v) => window.sfitEditor.state.version === v, { timeout: 30000 }, st.version);
   await consistent("the first page after the other tab's drag");
 });
 

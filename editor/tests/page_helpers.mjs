@@ -70,7 +70,7 @@ export function pageHelpers(ctx) {
     const s = await p.evaluate((r, i) => window.sfitEditor.screenOf(r, i), row, index);
     await p.mouse.click(s.x, s.y);
     await p.waitForFunction((r, i) => { const s = window.sfitEditor.selected(); return s && s.row === r && s.index === i; },
-      { timeout: 5000 }, row, index);
+      { timeout: 30000 }, row, index);
     return s;
   }
   async function drag(s, dx, dy, { steps = 10, up = true, during } = {}, p = ctx().page) {
