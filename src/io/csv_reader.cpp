@@ -204,11 +204,7 @@ class Parser {
   }
 
   Place place(std::size_t col0) const {
-    return Place{.file = out_.name,
-                 .line = line_no_,
-                 .column = static_cast<long>(col0 + col_base_) + 1,
-                 .row = static_cast<long>(out_.rows.size()),
-                 .point = static_cast<long>(out_.rows.open_row_size())};
+    return detail::reading_place(out_.name, line_no_, col0 + col_base_ + 1, out_.rows);
   }
 
   RowsFile out_;

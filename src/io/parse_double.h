@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "sfit/error.h"
+#include "sfit/rows.h"
 
 namespace sfit::io::detail {
 
@@ -70,6 +71,17 @@ inline std::string show_field(std::string_view tok) {
   }
   if (tok.size() > 40) s += "...";
   return s;
+}
+
+/// Where a reader stands: file `file`, line `line`, 1-based column `column`, and the row and
+/// point the next point would be in `rows` (the rows read so far).
+inline Place reading_place(const std::string& file, long line, std::size_t column,
+                           const Rows& rows) {
+  return Place{.file = file,
+               .line = line,
+               .column = static_cast<long>(column),
+               .row = static_cast<long>(rows.size()),
+               .point = static_cast<long>(rows.open_row_size())};
 }
 
 /// The error of a field that is no usable number (read_field_number() did not give kOk), with

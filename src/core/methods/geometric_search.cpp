@@ -163,7 +163,7 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
     a->stop += "; parameters from the coordinate plane nearest the best plane";
     g = std::move(a);
   }
-  if (g) g->tried = tried;
+  g->tried = tried;
   if (pairs) *pairs = tried;
   return g;
 }

@@ -49,13 +49,14 @@ inline constexpr long kGeometricMaxUnknowns = 20000;
 /// does not fold. nullopt: no base surface, or nothing below `bound` held.
 /// `corrections`: the most rounds of parameter correction (tests compare 0 with the default).
 /// `pairs`: set to the pairs solved, whether or not a surface is found.
+/// On an open sheet, where the best plane's parameters gave a surface, the search runs again
+/// over its coordinate plane's (BasePlane::kAxis, geometric_params.h) below that count; the
+/// fewer control points are kept (a tie: the best plane's).
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections = kCorrectionRounds,
                                              long* pairs = nullptr);
-/// The search on an open sheet: over the best plane's parameters, then over its coordinate
-/// plane's (BasePlane::kAxis, geometric_params.h) below the count found; the fewer control
-/// points are kept (a tie: the best plane's).
-/// search_geometric(), adding the pairs solved to `tried` as it goes; one base plane.
+/// search_geometric() over one base plane (`plane`), adding the pairs solved to `tried` as it
+/// goes.
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
                                                      long bound, int corrections, long& tried,
                                                      BasePlane plane = BasePlane::kBest);
