@@ -97,49 +97,12 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
     };
     best.holds = guarded(best.s, u, v);
     const double work = solve_work(sp, nu, nv, normal.has_value(), fr.centred.total_points());
-    // Where the smoothness was lowered to hold T and a guard failed (a span with few points
-    // swung out of the box, or the net folded): the weights in between, calmer first.
-    for (double w = kSmoothing * 0.1; !best.holds && w > 1.5 * best.smoothing; w *= 0.1) {
-      Surface s;
-      budget.spent += work;
-      if (!calm_solve(sp, nu, nv, w, s, normal, plane)) break;
-      const PairVerdict verdict = fr.judge(s, u, v, nullptr, nullptr, false);
-      if (verdict.holds && guarded(s, u, v)) {
-        best.s = std::move(s);
-        best.ratio = verdict.ratio;
-        best.smoothing = w;
-        best.holds = true;
-      } else if (!verdict.holds && verdict.ratio <= kSmoothingReach && guarded(s, u, v)) {
-        // Calm and unfolded but T missed narrowly: the parameters corrected on this surface
-        // and the pair solved again at this weight.
-        std::vector<double> cu = u, cv = v, gu, gv;
-        budget.spent += pass + work;
-        project_parameters(s, fr.centred, cu, cv, kNewtonSteps, fr.threads);
-        to_fractions(s, cu, cv, gu, gv);
-        const ScatteredProblem again(fr.centred, spec, std::move(gu), std::move(gv));
-        Surface c;
-        if (!calm_solve(again, nu, nv, w, c, normal, plane)) continue;
-        const std::vector<double> au = again.u_at(nu), av = again.v_at(nv);
-        const PairVerdict cverdict = fr.judge(c, au, av, nullptr, nullptr, false);
-        if (cverdict.holds && guarded(c, au, av)) {
-          best.s = std::move(c);
-          best.ratio = cverdict.ratio;
-          best.smoothing = w;
-          best.fu = again.fractions_u();
-          best.fv = again.fractions_v();
-          best.corrections += 1;
-          best.holds = true;
-        }
-      }
-    }
-    // The stretched pass (calmer): where T held but a guard failed, calmer weights than the
-    // search's, each corrected by projection (at that weight) while it stays calm and unfolded.
-    for (double w = kSmoothing * 10; calmer && !best.holds && w <= kSmoothing * kCalmerMost;
-         w *= 10) {
-      Surface s;
-      budget.spent += work;
-      if (!calm_solve(sp, nu, nv, w, s, normal, plane)) break;
-      std::vector<double> cu = u, cv = v;
+    // The surface `s` solved on `sp` at weight `w` into `best` where it holds T and the guards;
+    // where it is calm and unfolded but misses T by at most `reach`, the parameters corrected
+    // on it and the pair solved again at `w`, at most `rounds` times (each round first asks
+    // the budget where `budgeted`).
+    auto settle = [&](Surface s, double w, int rounds, double reach, bool budgeted) {
+      std::vector<double> cu = u, cv = v, gu, gv;
       PairVerdict verdict = fr.judge(s, cu, cv, nullptr, nullptr, false);
       for (int round = 0; guarded(s, cu, cv); ++round) {
         if (verdict.holds) {
@@ -148,22 +111,40 @@ Tried attempt(const Frame& fr, const ScatteredSpec& spec, const std::vector<doub
           best.smoothing = w;
           best.holds = true;
           if (round > 0) {
-            best.fu = fu;
-            best.fv = fv;
+            best.fu = std::move(gu);
+            best.fv = std::move(gv);
             best.corrections += round;
           }
-          break;
+          return;
         }
-        if (round == kCorrectionRounds || verdict.ratio > kCalmerReach || budget.over()) break;
+        if (round == rounds || verdict.ratio > reach || (budgeted && budget.over())) return;
         budget.spent += pass + work;
         project_parameters(s, fr.centred, cu, cv, kNewtonSteps, fr.threads);
-        to_fractions(s, cu, cv, fu, fv);
-        const ScatteredProblem again(fr.centred, spec, fu, fv);
-        if (!calm_solve(again, nu, nv, w, s, normal, plane)) break;
+        to_fractions(s, cu, cv, gu, gv);
+        const ScatteredProblem again(fr.centred, spec, gu, gv);
+        if (!calm_solve(again, nu, nv, w, s, normal, plane)) return;
         cu = again.u_at(nu);
         cv = again.v_at(nv);
         verdict = fr.judge(s, cu, cv, nullptr, nullptr, false);
       }
+    };
+    // Where the smoothness was lowered to hold T and a guard failed (a span with few points
+    // swung out of the box, or the net folded): the weights in between, calmer first, each
+    // corrected once where it missed T narrowly.
+    for (double w = kSmoothing * 0.1; !best.holds && w > 1.5 * best.smoothing; w *= 0.1) {
+      Surface s;
+      budget.spent += work;
+      if (!calm_solve(sp, nu, nv, w, s, normal, plane)) break;
+      settle(std::move(s), w, 1, kSmoothingReach, false);
+    }
+    // The stretched pass (calmer): where T held but a guard failed, calmer weights than the
+    // search's, each corrected by projection (at that weight) while it stays calm and unfolded.
+    for (double w = kSmoothing * 10; calmer && !best.holds && w <= kSmoothing * kCalmerMost;
+         w *= 10) {
+      Surface s;
+      budget.spent += work;
+      if (!calm_solve(sp, nu, nv, w, s, normal, plane)) break;
+      settle(std::move(s), w, kCorrectionRounds, kCalmerReach, true);
     }
     // Where the height alone was calmed and a guard failed: the calm term on every axis.
     if (!best.holds && normal) {
