@@ -4,7 +4,9 @@
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <array>
+#include <cmath>
 
+#include "banded_cholesky.h"
 #include "basis.h"
 #include "kron_pcg.h"
 
@@ -19,6 +21,87 @@ constexpr double kSimplicialFlops = 2e8;
 // converge in 150 iterations on volcano and the teapot body; 3-25 iterations below it).
 constexpr double kIterativeFlops = 1e6;
 constexpr double kIterativeShare = 0.75;
+// Up to this many flops (N b^2, b the band of the narrower ordering) the system is factorised
+// as a band (banded_cholesky.h), before conjugate gradients or a sparse factorisation: no
+// triplets, ordering or symbolic analysis (those were a third of the row rules' solves).
+constexpr double kBandedFlops = 1e7;
+
+// The band of the system in the ordering of the narrower band, as ScatteredFactor orders it:
+// u-major (i nv + l) or v-major (l nu + i; always where u is closed, its wrap then within a
+// block); never both closed.
+struct BandOrder {
+  bool v_major = false;
+  long b = 0;
+};
+BandOrder band_order(const TensorSpec& spec, int nu, int nv) {
+  const int p = spec.degree_u, q = spec.degree_v;
+  BandOrder o;
+  o.v_major = spec.closed_u ||
+              (!spec.closed_v && static_cast<long>(q) * nu + p < static_cast<long>(p) * nv + q);
+  o.b = spec.closed_u ? static_cast<long>(q + 1) * nu - 1
+        : spec.closed_v
+            ? static_cast<long>(p + 1) * nv - 1
+            : (o.v_major ? static_cast<long>(q) * nu + p : static_cast<long>(p) * nv + q);
+  o.b = std::min(o.b, static_cast<long>(nu) * nv - 1);
+  return o;
+}
+
+// The system factorised as a band and solved for the three right-hand sides; the same
+// matrix as solve()'s sparse one (each stored entry added to its pair).
+bool solve_banded(const NormalEquations& ne, Eigen::MatrixX3d& x) {
+  const TensorSpec& spec = ne.spec;
+  const int nu = ne.nu, nv = ne.nv;
+  const int pv = spec.degree_v, wu = spec.degree_u + 1, sv = 2 * pv + 1;
+  const BandOrder o = band_order(spec, nu, nv);
+  const long N = static_cast<long>(nu) * nv, b = o.b, w1 = b + 1;
+  auto at = [&](int i, int l) -> long {
+    return o.v_major ? static_cast<long>(l) * nu + i : static_cast<long>(i) * nv + l;
+  };
+  std::vector<double> L(static_cast<std::size_t>(N * w1), 0.0);
+  double trace = 0;
+  for (int i = 0; i < nu; ++i)
+    for (int l = 0; l < nv; ++l) {
+      const long r = static_cast<long>(i) * nv + l, R = at(i, l);
+      for (int d = 0; d < wu; ++d) {
+        if (!spec.closed_u && i + d >= nu) break;
+        const int i2 = (i + d) % nu;
+        for (int e = 0; e < sv; ++e) {
+          const double val = ne.st[(static_cast<std::size_t>(r) * wu + d) * sv + e];
+          if (val == 0.0) continue;
+          int l2 = l + e - pv;
+          if (l2 < 0 || l2 >= nv) {
+            if (!spec.closed_v) continue;
+            l2 = (l2 + nv) % nv;
+          }
+          long hi = R, lo = at(i2, l2);
+          if (lo > hi) std::swap(lo, hi);
+          if (hi - lo > b) return false;  // (cannot happen: the band holds every neighbour)
+          L[static_cast<std::size_t>(hi * w1 + lo - hi + b)] += val;
+          if (hi == lo) trace += val;
+        }
+      }
+    }
+  if (!(trace > 0)) return false;
+  if (!banded_cholesky(L.data(), N, b, 1e-13 * (trace / static_cast<double>(N)))) return false;
+  Eigen::MatrixX3d y(N, 3);
+  for (int i = 0; i < nu; ++i)
+    for (int l = 0; l < nv; ++l) y.row(at(i, l)) = ne.rhs.row(static_cast<long>(i) * nv + l);
+  for (long r = 0; r < N; ++r) {
+    const double* Lr = L.data() + r * w1 - r + b;
+    Eigen::RowVector3d sum = y.row(r);
+    for (long k = std::max(0L, r - b); k < r; ++k) sum -= Lr[k] * y.row(k);
+    y.row(r) = sum / Lr[r];
+  }
+  for (long r = N - 1; r >= 0; --r) {
+    const double* Lr = L.data() + r * w1 - r + b;
+    y.row(r) /= Lr[r];
+    for (long k = std::max(0L, r - b); k < r; ++k) y.row(k) -= Lr[k] * y.row(r);
+  }
+  x.resize(N, 3);
+  for (int i = 0; i < nu; ++i)
+    for (int l = 0; l < nv; ++l) x.row(static_cast<long>(i) * nv + l) = y.row(at(i, l));
+  return true;
+}
 }  // namespace
 
 Eigen::SparseMatrix<double> band_matrix(const double* G, int count, int width, bool periodic) {
@@ -51,6 +134,12 @@ double full_cost(const TensorSpec& spec, int nu, int nv) {
                                static_cast<double>(nv) * spec.degree_u + spec.degree_v) +
                       1;
   return n * band * band;
+}
+
+bool solves_as_band(const TensorSpec& spec, int nu, int nv) {
+  if (spec.closed_u && spec.closed_v) return false;
+  const double b = static_cast<double>(band_order(spec, nu, nv).b);
+  return static_cast<double>(nu) * nv * b * b <= kBandedFlops;
 }
 
 bool tries_cg(const TensorSpec& spec, int nu, int nv, int min_points) {
@@ -102,6 +191,13 @@ bool solve(const NormalEquations& ne, bool try_cg, Surface& out) {
   const int nu = ne.nu, nv = ne.nv;
   const int pv = spec.degree_v, wu = spec.degree_u + 1, wv = pv + 1, sv = 2 * pv + 1;
   const std::size_t n = static_cast<std::size_t>(nu) * nv;
+  Eigen::MatrixX3d x;
+  if (solves_as_band(spec, nu, nv)) {
+    if (!solve_banded(ne, x) || !x.allFinite()) return false;
+    shape(out, spec, nu, nv);
+    for (std::size_t k = 0; k < n; ++k) out.control[k] = x.row(static_cast<Eigen::Index>(k));
+    return true;
+  }
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(n * wu * sv);
   for (int i = 0; i < nu; ++i)
@@ -125,7 +221,6 @@ bool solve(const NormalEquations& ne, bool try_cg, Surface& out) {
     }
   Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   A.setFromTriplets(trip.begin(), trip.end());
-  Eigen::MatrixX3d x;
   bool solved = false;
   if (try_cg && ne.kron && ne.s_sum > 0) {
     std::vector<double> gbar = ne.gbar;

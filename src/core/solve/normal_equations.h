@@ -35,6 +35,10 @@ void shape(Surface& out, const TensorSpec& spec, int nu, int nv);
 /// enough system, and nu at most a share of the shortest row's points (`min_points`).
 bool tries_cg(const TensorSpec& spec, int nu, int nv, int min_points);
 
+/// Whether solve() factorises the system at (nu, nv) as a band (banded_cholesky.h): small
+/// enough, and not closed in both directions.
+bool solves_as_band(const TensorSpec& spec, int nu, int nv);
+
 struct NormalEquations {
   /// Zero equations at (nu, nv); `kron`: the preconditioner's factors accumulated too.
   NormalEquations(const TensorSpec& spec, int nu, int nv, bool kron);
@@ -56,7 +60,8 @@ struct NormalEquations {
 };
 
 /// The least-squares surface of the equations into `out` (centred, as the data they were
-/// made from); CG first where `try_cg` (and ne.kron), else the sparse factorisation. false
+/// made from); as a band where solves_as_band(), else CG first where `try_cg` (and ne.kron),
+/// else the sparse factorisation. false
 /// when the system is singular (a span without data) or the solution is not finite.
 bool solve(const NormalEquations& ne, bool try_cg, Surface& out);
 
