@@ -57,6 +57,13 @@ double ScatteredProblem::cost(int nu, int nv) const {
 
 namespace {
 
+// row[a wv + c] += wx * w[a Q + c] for a <= p, c < Q: runs of Q known at compile time.
+template <int Q>
+inline void add_runs(double* row, int wv, int p, double wx, const double* w) {
+  for (int a = 0; a <= p; ++a, row += wv, w += Q)
+    for (int c = 0; c < Q; ++c) row[c] += wx * w[c];
+}
+
 // The data term of points whose bases `basis(k, bu, bv)` gives (it fills the p + 1 and q + 1
 // values and returns the first control points {f0, f1}), added into `band` and `rhs` (`pts`
 // empty: the band only).
@@ -67,12 +74,6 @@ void add_points(const ScatteredSpec& spec, int nu, int nv, std::size_t count,
   const int p = spec.degree_u, q = spec.degree_v;
   const int wv = 2 * q + 1, W = (2 * p + 1) * wv;
   const int n_local = (p + 1) * (q + 1);
-  // Offsets in the band store of local product (x, y): depends on the local indices only.
-  std::vector<int> offset(static_cast<std::size_t>(n_local) * n_local);
-  for (int x = 0; x < n_local; ++x)
-    for (int y = 0; y < n_local; ++y)
-      offset[x * n_local + y] =
-          (y / (q + 1) - x / (q + 1) + p) * wv + (y % (q + 1) - x % (q + 1) + q);
   std::array<double, kMaxDegree + 1> bu, bv;
   std::vector<double> w(n_local);
   std::vector<std::size_t> idx(n_local);
@@ -87,9 +88,15 @@ void add_points(const ScatteredSpec& spec, int nu, int nv, std::size_t count,
       }
     for (int x = 0; x < n_local; ++x) {
       const double wx = weight * w[x];
-      double* row = band.data() + idx[x] * W;
-      const int* off = offset.data() + x * n_local;
-      for (int y = 0; y < n_local; ++y) row[off[y]] += wx * w[y];
+      // Product (x, y), y = (a', c'), goes to offset (a' - a + p) wv + (c' - c + q) of x's
+      // row: for each a' a run of q + 1 neighbours, added as contiguous runs (the compiler
+      // vectorises them; each entry gets the same product as one at a time).
+      double* row = band.data() + idx[x] * W + (q - x % (q + 1)) + (p - x / (q + 1)) * wv;
+      if (q == 3)
+        add_runs<4>(row, wv, p, wx, w.data());
+      else
+        for (int a2 = 0; a2 <= p; ++a2)
+          for (int c2 = 0; c2 <= q; ++c2) row[a2 * wv + c2] += wx * w[a2 * (q + 1) + c2];
       if (!pts.empty()) rhs[idx[x]] += wx * pts[k];
     }
   }
