@@ -4,7 +4,6 @@
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <array>
-#include <cmath>
 
 #include "banded_cholesky.h"
 #include "basis.h"
@@ -26,24 +25,8 @@ constexpr double kIterativeShare = 0.75;
 // triplets, ordering or symbolic analysis (those were a third of the row rules' solves).
 constexpr double kBandedFlops = 1e7;
 
-// The band of the system in the ordering of the narrower band, as ScatteredFactor orders it:
-// u-major (i nv + l) or v-major (l nu + i; always where u is closed, its wrap then within a
-// block); never both closed.
-struct BandOrder {
-  bool v_major = false;
-  long b = 0;
-};
-BandOrder band_order(const TensorSpec& spec, int nu, int nv) {
-  const int p = spec.degree_u, q = spec.degree_v;
-  BandOrder o;
-  o.v_major = spec.closed_u ||
-              (!spec.closed_v && static_cast<long>(q) * nu + p < static_cast<long>(p) * nv + q);
-  o.b = spec.closed_u ? static_cast<long>(q + 1) * nu - 1
-        : spec.closed_v
-            ? static_cast<long>(p + 1) * nv - 1
-            : (o.v_major ? static_cast<long>(q) * nu + p : static_cast<long>(p) * nv + q);
-  o.b = std::min(o.b, static_cast<long>(nu) * nv - 1);
-  return o;
+BandOrder spec_order(const TensorSpec& spec, int nu, int nv) {
+  return band_order(spec.degree_u, spec.degree_v, spec.closed_u, spec.closed_v, nu, nv);
 }
 
 // The system factorised as a band and solved for the three right-hand sides; the same
@@ -52,11 +35,9 @@ bool solve_banded(const NormalEquations& ne, Eigen::MatrixX3d& x) {
   const TensorSpec& spec = ne.spec;
   const int nu = ne.nu, nv = ne.nv;
   const int pv = spec.degree_v, wu = spec.degree_u + 1, sv = 2 * pv + 1;
-  const BandOrder o = band_order(spec, nu, nv);
+  const BandOrder o = spec_order(spec, nu, nv);
   const long N = static_cast<long>(nu) * nv, b = o.b, w1 = b + 1;
-  auto at = [&](int i, int l) -> long {
-    return o.v_major ? static_cast<long>(l) * nu + i : static_cast<long>(i) * nv + l;
-  };
+  auto at = [&](int i, int l) { return o.at(i, l); };
   std::vector<double> L(static_cast<std::size_t>(N * w1), 0.0);
   double trace = 0;
   for (int i = 0; i < nu; ++i)
@@ -83,23 +64,14 @@ bool solve_banded(const NormalEquations& ne, Eigen::MatrixX3d& x) {
     }
   if (!(trace > 0)) return false;
   if (!banded_cholesky(L.data(), N, b, 1e-13 * (trace / static_cast<double>(N)))) return false;
-  Eigen::MatrixX3d y(N, 3);
+  std::vector<Point> y(static_cast<std::size_t>(N));
   for (int i = 0; i < nu; ++i)
-    for (int l = 0; l < nv; ++l) y.row(at(i, l)) = ne.rhs.row(static_cast<long>(i) * nv + l);
-  for (long r = 0; r < N; ++r) {
-    const double* Lr = L.data() + r * w1 - r + b;
-    Eigen::RowVector3d sum = y.row(r);
-    for (long k = std::max(0L, r - b); k < r; ++k) sum -= Lr[k] * y.row(k);
-    y.row(r) = sum / Lr[r];
-  }
-  for (long r = N - 1; r >= 0; --r) {
-    const double* Lr = L.data() + r * w1 - r + b;
-    y.row(r) /= Lr[r];
-    for (long k = std::max(0L, r - b); k < r; ++k) y.row(k) -= Lr[k] * y.row(r);
-  }
+    for (int l = 0; l < nv; ++l)
+      y[at(i, l)] = ne.rhs.row(static_cast<long>(i) * nv + l).transpose();
+  banded_substitute(L.data(), N, b, y.data());
   x.resize(N, 3);
   for (int i = 0; i < nu; ++i)
-    for (int l = 0; l < nv; ++l) x.row(static_cast<long>(i) * nv + l) = y.row(at(i, l));
+    for (int l = 0; l < nv; ++l) x.row(static_cast<long>(i) * nv + l) = y[at(i, l)].transpose();
   return true;
 }
 }  // namespace
@@ -138,7 +110,7 @@ double full_cost(const TensorSpec& spec, int nu, int nv) {
 
 bool solves_as_band(const TensorSpec& spec, int nu, int nv) {
   if (spec.closed_u && spec.closed_v) return false;
-  const double b = static_cast<double>(band_order(spec, nu, nv).b);
+  const double b = static_cast<double>(spec_order(spec, nu, nv).b);
   return static_cast<double>(nu) * nv * b * b <= kBandedFlops;
 }
 

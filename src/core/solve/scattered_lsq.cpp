@@ -264,17 +264,13 @@ bool ScatteredFactor::factor(const ScatteredSpec& spec, int nu, int nv,
   for (std::size_t I = 0; I < N; ++I) trace += band[I * W + centre];
   if (!(trace > 0)) return false;
   const double lambda = smoothing * trace / static_cast<double>(N);
-  // The banded system in the ordering of the narrower band: u-major (i nv + l, band p nv + q)
-  // or v-major (l nu + i, band q nu + p; always where u is closed, its wrap then staying within
-  // a block: band (q + 1) nu - 1; never where v is closed: band (p + 1) nv - 1).
+  // The banded system in the ordering of the narrower band (banded_cholesky.h).
   nu_ = nu;
   nv_ = nv;
-  v_major_ = cu || (!cv && static_cast<long>(q) * nu + p < static_cast<long>(p) * nv + q);
-  const long bw = cu   ? static_cast<long>(q + 1) * nu - 1
-                  : cv ? static_cast<long>(p + 1) * nv - 1
-                       : (v_major_ ? static_cast<long>(q) * nu + p : static_cast<long>(p) * nv + q);
+  const BandOrder order = band_order(p, q, cu, cv, nu, nv);
+  v_major_ = order.v_major;
   const long Nb = static_cast<long>(N);
-  const long b = std::min(bw, Nb - 1), w1 = b + 1;
+  const long b = order.b, w1 = b + 1;
   b_ = b;
   // A store kept from the last factorisation grows by at least half (a search's pairs grow
   // one after the other: new memory each time cost a page fault per 4 kB on first touch).
@@ -285,9 +281,7 @@ bool ScatteredFactor::factor(const ScatteredSpec& spec, int nu, int nv,
   }
   L_.assign(need, 0.0);
   std::vector<double>& L = L_;
-  auto at = [&](int i, int l) -> long {
-    return v_major_ ? static_cast<long>(l) * nu + i : static_cast<long>(i) * nv + l;
-  };
+  auto at = [&](int i, int l) { return order.at(i, l); };
   // L(r, c) for c <= r at L[r w1 + c - r + b].
   auto add = [&](long r, long c, double x) {
     if (c > r) std::swap(r, c);
@@ -357,21 +351,9 @@ bool ScatteredFactor::factor(const ScatteredSpec& spec, int nu, int nv,
 template <class T>
 void ScatteredFactor::solve_in_place(std::vector<T>& io) const {
   const std::size_t N = static_cast<std::size_t>(nu_) * nv_;
-  const long Nb = static_cast<long>(N), b = b_, w1 = b + 1;
-  const std::vector<double>& L = L_;
   std::vector<T> x(N);
   for (std::size_t I = 0; I < N; ++I) x[static_cast<std::size_t>(pos(I))] = io[I];
-  for (long r = 0; r < Nb; ++r) {
-    const double* Lr = L.data() + r * w1 - r + b;
-    T sum = x[r];
-    for (long k = std::max(0L, r - b); k < r; ++k) sum -= Lr[k] * x[k];
-    x[r] = sum / Lr[r];
-  }
-  for (long r = Nb - 1; r >= 0; --r) {
-    const double* Lr = L.data() + r * w1 - r + b;
-    x[r] /= Lr[r];
-    for (long k = std::max(0L, r - b); k < r; ++k) x[k] -= Lr[k] * x[r];
-  }
+  banded_substitute(L_.data(), static_cast<long>(N), b_, x.data());
   for (std::size_t I = 0; I < N; ++I) io[I] = x[static_cast<std::size_t>(pos(I))];
 }
 
