@@ -55,8 +55,9 @@ inline constexpr long kGeometricMaxUnknowns = 20000;
 /// over its coordinate plane's (BasePlane::kAxis, geometric_params.h) below that count; the
 /// fewer control points are kept (a tie: the best plane's).
 /// Where no pair held by least squares, minimax is tried at the nearest pairs below
-/// `linf_bound` too (FitNorm::kAuto and kLinf; minimax_rescue() in geometric_search.cpp): the
-/// caller's best count so far, so that no LP is solved for a pair that could not win.
+/// `linf_bound` too (FitNorm::kAuto and kLinf; geometric_minimax.h). The default passes 0
+/// where a row rule found a pair (an LP of a few hundred unknowns on 2 x 10^4 points can take a
+/// minute: uneven_rows of bench/scan_cases.py at 1e-3), else its bound.
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections = kCorrectionRounds,
                                              long* pairs = nullptr, long linf_bound = LONG_MAX);

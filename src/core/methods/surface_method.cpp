@@ -199,6 +199,7 @@ FitResult fit_surface_search(const FitSpec& spec) {
       const long geo_bound =
           crf.forced ? std::min<long>(geo_limit, static_cast<long>(points / 4)) : geo_limit;
       long geo_pairs = 0;
+      // Its minimax (geometric_minimax.h) only where no row rule found a pair.
       geo = search_geometric(fr, o, geo_bound, kCorrectionRounds, &geo_pairs, best ? 0 : bound);
       tried += geo_pairs;
       if (crf.forced && !geo) {
