@@ -4,16 +4,20 @@
 Each case is made here from a formula and a seeded random generator, so nobody tunes for a
 file: scan lines clipped by a round boundary, a range image with holes, rows sampled unevenly,
 hand-drawn closed contours, sections with sharp corners, a terrain grid of 10^5 points, an
-airborne LiDAR tile with buildings and trees, and one case moved far from the origin. For each, at 1e-2 and 1e-3 of the bounding-box diagonal, the
+airborne LiDAR tile with buildings and trees, and one case moved far from the origin; and,
+added 2026-12-03 (bench/scan_shapes.py), an aircraft fuselage, a wind blade of ragged closed
+sections, ship stations with a chine and a deck corner, a 344 x 403 DEM with a river valley and
+a range image with noise near T and a large irregular hole. For each, at 1e-2 and 1e-3 of the bounding-box diagonal, the
 table gives the points, the control points of the default fit (nu x nv), their ratio to the
 points, the rule that made the surface, whether the report says it holds T, the fold measure,
 the CLI's wall time, and whether the report says that the data's noise or jumps exceed T (where more
 control points than points are allowed).
 
-    bench/scan_cases.py build/apps/sfit/sfit [--only NAME] [--tol 1e-2,1e-3] [--seed 7]
+    bench/scan_cases.py build/apps/sfit/sfit [--only NAME] [--tol 1e-2,1e-3] [--seed 7] [--stop]
 
 `--seed` draws the cases again from another seed of the random generator (default 7, the
-seed of every number quoted in docs/).
+seed of every number quoted in docs/); `--stop` prints each report's stop reason (its first
+160 characters) under its line.
 """
 
 import argparse
@@ -26,6 +30,8 @@ import tempfile
 import time
 
 import numpy as np
+
+from scan_shapes import dem_river, fuselage, range_hole_noise, ship_stations, wind_blade
 
 
 def field(x, y):
@@ -194,6 +200,12 @@ CASES = {
     "lidar_tile": (lidar_tile, []),
     "lidar_corner_strip": (lidar_corner_strip, []),
     "far_offset": (far_offset, []),
+    # added 2026-12-03 (bench/scan_shapes.py): shapes the code was not developed on
+    "fuselage": (fuselage, ["--closed", "u"]),
+    "wind_blade": (wind_blade, ["--closed", "u"]),
+    "ship_stations": (ship_stations, []),
+    "dem_river": (dem_river, []),
+    "range_hole_noise": (range_hole_noise, []),
 }
 
 
@@ -224,6 +236,7 @@ def main():
     ap.add_argument("--seed", type=int, default=7, help="the random generator's seed")
     ap.add_argument("--extra", default="", help="more CLI options, e.g. '--method sfit01'")
     ap.add_argument("--save", default="", help="also write each case's rows to this directory")
+    ap.add_argument("--stop", action="store_true", help="print each report's stop reason")
     a = ap.parse_args()
     tols = [float(t) for t in a.tol.split(",")]
     print(f"{'case':<20} {'tol':>6} {'points':>8} {'nu x nv':>11} {'cp/pts':>7} {'rule':>12} "
@@ -255,6 +268,8 @@ def main():
                       f"{r['parameters']:>12} {str(r['within_tolerance']):>5} "
                       f"{r['fold']:>8.2g} {dt:>7.2f}  "
                       f"{claim(r['stop_reason'])}")
+                if a.stop:
+                    print(f"    stop: {r['stop_reason'][:160]}")
                 sys.stdout.flush()
 
 

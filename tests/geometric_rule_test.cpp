@@ -136,7 +136,9 @@ Rows uneven_eight() {
 
 const Case kCases[] = {
     {"clipped scan lines", clipped_scan_lines, false, 15, 13},
-    {"range image with a hole", range_image_with_hole, false, 15, 13},
+    // 15 x 13 by least squares; 12 x 15 by minimax over the coordinate plane since 2026-12-03
+    // (geometric_minimax.h: nothing below 15 x 13 held by least squares there).
+    {"range image with a hole", range_image_with_hole, false, 12, 15},
     {"uneven rows of 700..1300", uneven_eight, false, 16, 9},
     {"ragged closed sections", ragged_sections, true, 53, 6},
 };

@@ -27,6 +27,8 @@ class PairOracle {
     return it == memo_.end() ? nullptr : &it->second;
   }
   long tried() const { return static_cast<long>(memo_.size()); }
+  /// Every pair solved so far and its verdict.
+  const std::map<std::pair<int, int>, PairVerdict>& verdicts() const { return memo_; }
 
  private:
   std::function<PairVerdict(int, int)> solve_;

@@ -7,6 +7,7 @@
 
 #include "fit_frame.h"
 #include "fit_monitor.h"
+#include "geometric_minimax.h"
 #include "geometric_params.h"
 #include "pair_search.h"
 #include "scattered_lsq.h"
@@ -145,9 +146,10 @@ PairRange range_for(const ScatteredProblem& sp, const Rows& rows) {
 }  // namespace
 
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
-                                             int corrections, long* pairs) {
+                                             int corrections, long* pairs, long linf_bound) {
   long tried = 0;
-  std::optional<GeometricFit> g = search_geometric_counted(fr, o, bound, corrections, tried);
+  std::optional<GeometricFit> g =
+      search_geometric_counted(fr, o, bound, corrections, tried, BasePlane::kBest, linf_bound);
   // The coordinate plane's parameters, below the count found (geometric_params.h): only
   // where the best plane's found one. Where it found none below the bound the coordinate
   // plane's search was as long and found none either on every example set and generated
@@ -158,7 +160,8 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   }
   const long found = static_cast<long>(g->surface.count_u) * g->surface.count_v;
   std::optional<GeometricFit> a =
-      search_geometric_counted(fr, o, std::min(bound, found), corrections, tried, BasePlane::kAxis);
+      search_geometric_counted(fr, o, std::min(bound, found), corrections, tried, BasePlane::kAxis,
+                               std::min(linf_bound, found));
   if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < found) {
     a->stop += "; parameters from the coordinate plane nearest the best plane";
     g = std::move(a);
@@ -170,7 +173,7 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
 
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
                                                      long bound, int corrections, long& tried,
-                                                     BasePlane plane) {
+                                                     BasePlane plane, long linf_bound) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v, plane);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
@@ -204,7 +207,14 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   }
   const PairChoice c = search_pairs(range, start, first);
   tried += first.tried();
-  if (c.nu == 0) return std::nullopt;
+  if (c.nu == 0) {
+    // Nothing held by least squares: minimax at the nearest pairs (geometric_minimax.h).
+    const GeometricLeastSquares ls = [&fr](const ScatteredProblem& p, int nu, int nv) {
+      Attempt a = attempt(p, fr, nullptr, nu, nv);
+      return GeometricTry{a.verdict.holds, std::move(a.s), a.smoothing};
+    };
+    return geometric_minimax(fr, o, spec, *f, first, std::min(bound, linf_bound), plane, ls, tried);
+  }
   int nu = c.nu, nv = c.nv;
   std::string stop = c.stop;
   // Correction: project the points onto the fit, refit, descend; while the count falls.
@@ -381,7 +391,7 @@ FitResult assemble_geometric(const Frame& fr, GeometricFit g, const DeviationChe
   out.report.method = FitMethod::kSurface;
   out.report.parametrization = Parametrization::kGeometric;
   out.report.parametrization_across = Parametrization::kGeometric;
-  out.report.norm = FitNorm::kL2;
+  out.report.norm = g.norm;
   return out;
 }
 

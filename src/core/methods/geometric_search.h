@@ -4,6 +4,7 @@
 // that lowers the count. Private to the surface method.
 #pragma once
 
+#include <climits>
 #include <optional>
 #include <span>
 #include <string>
@@ -30,11 +31,12 @@ inline constexpr double kSmoothingLower = 1e-4;
 /// A surface of the rule (centred) with its points' parameters at its counts.
 struct GeometricFit {
   Surface surface;
-  std::vector<double> u, v;  ///< per point, rows.points() order
-  std::string stop;          ///< why the search stopped there
-  long tried = 0;            ///< pairs solved
-  int corrections = 0;       ///< rounds of parameter correction that lowered the count
-  double smoothing = 0;      ///< the smoothness weight the surface was made with
+  std::vector<double> u, v;     ///< per point, rows.points() order
+  std::string stop;             ///< why the search stopped there
+  long tried = 0;               ///< pairs solved
+  int corrections = 0;          ///< rounds of parameter correction that lowered the count
+  double smoothing = 0;         ///< the smoothness weight the surface was made with
+  FitNorm norm = FitNorm::kL2;  ///< kLinf: minimax at the rule's parameters (no pair held by l2)
 };
 
 /// The most unknowns (nu x nv) a pair of the search may have: larger pairs are not tried (their
@@ -52,14 +54,19 @@ inline constexpr long kGeometricMaxUnknowns = 20000;
 /// On an open sheet, where the best plane's parameters gave a surface, the search runs again
 /// over its coordinate plane's (BasePlane::kAxis, geometric_params.h) below that count; the
 /// fewer control points are kept (a tie: the best plane's).
+/// Where no pair held by least squares, minimax is tried at the nearest pairs below
+/// `linf_bound` too (FitNorm::kAuto and kLinf; geometric_minimax.h). The default passes 0
+/// where a row rule found a pair (an LP of a few hundred unknowns on 2 x 10^4 points can take a
+/// minute: uneven_rows of bench/scan_cases.py at 1e-3), else its bound.
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections = kCorrectionRounds,
-                                             long* pairs = nullptr);
+                                             long* pairs = nullptr, long linf_bound = LONG_MAX);
 /// search_geometric() over one base plane (`plane`), adding the pairs solved to `tried` as it
 /// goes.
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
                                                      long bound, int corrections, long& tried,
-                                                     BasePlane plane = BasePlane::kBest);
+                                                     BasePlane plane = BasePlane::kBest,
+                                                     long linf_bound = LONG_MAX);
 
 /// The rule's surface at exactly (nu, nv) (FitOptions::counts), holding or not; nullopt where
 /// the rule has no base surface for the rows. The smoothness weight starts at `smoothing`

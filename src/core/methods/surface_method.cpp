@@ -199,7 +199,8 @@ FitResult fit_surface_search(const FitSpec& spec) {
       const long geo_bound =
           crf.forced ? std::min<long>(geo_limit, static_cast<long>(points / 4)) : geo_limit;
       long geo_pairs = 0;
-      geo = search_geometric(fr, o, geo_bound, kCorrectionRounds, &geo_pairs);
+      // Its minimax (geometric_minimax.h) only where no row rule found a pair.
+      geo = search_geometric(fr, o, geo_bound, kCorrectionRounds, &geo_pairs, best ? 0 : bound);
       tried += geo_pairs;
       if (crf.forced && !geo) {
         // Not "forced": the rows' need says nothing of this rule's surfaces above the cap.
@@ -253,7 +254,7 @@ FitResult fit_surface_search(const FitSpec& spec) {
     const long n = static_cast<long>(geo->surface.count_u) * geo->surface.count_v;
     if (n < bound) {
       bound = n;
-      best = Candidate{Parametrization::kGeometric, FitNorm::kL2, geo->surface.count_u,
+      best = Candidate{Parametrization::kGeometric, geo->norm, geo->surface.count_u,
                        geo->surface.count_v, geo->stop};
     } else {
       geo.reset();

@@ -14,6 +14,9 @@ namespace sfit::detail {
 namespace {
 
 constexpr int kRounds = 40;  // exchange rounds; each adds the points the last LP missed
+// minimax_refine_points(): a coefficient whose data term (the sum of its basis values over the
+// points) is below this fraction of the mean keeps its least-squares value.
+constexpr double kWeakHold = 0.05;
 
 // The design of one point: (pu + 1)(pv + 1) unknowns and their basis products.
 struct Design {
@@ -22,8 +25,9 @@ struct Design {
   std::vector<double> value;  // points x width
 };
 
+// v_per_point: v holds one parameter per point (the geometric rule's), else one per row.
 Design design_of(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
-                 const Surface& s) {
+                 const Surface& s, bool v_per_point) {
   Design d;
   const int wu = s.degree_u + 1, wv = s.degree_v + 1;
   d.width = wu * wv;
@@ -32,8 +36,9 @@ Design design_of(const Rows& rows, const std::vector<double>& u, const std::vect
   d.value.resize(N * d.width);
   std::array<double, kMaxDegree + 1> bu, bv;
   for (std::size_t j = 0; j < rows.size(); ++j) {
-    const int fv = basis_v(s, v[j], bv.data());
+    int fv = v_per_point ? 0 : basis_v(s, v[j], bv.data());
     for (std::size_t k = rows.offsets()[j]; k < rows.offsets()[j + 1]; ++k) {
+      if (v_per_point) fv = basis_v(s, v[k], bv.data());
       const int fu = basis_u(s, u[k], bu.data());
       int c = 0;
       for (int a = 0; a < wu; ++a)
@@ -61,8 +66,13 @@ void residuals(const Design& d, const std::vector<double>& x, const std::vector<
 
 // The minimax coefficients of one axis, from x (least squares) in place. False when the
 // minimax error is above `tol` (the LP of a subset already proves it).
+// `keep_weak`: the coefficients the data hold weakly (kWeakHold) keep their least-squares
+// values, which the smoothness term made: the LP has none, and a coefficient that no point
+// holds (a hole, an empty corner) would go wherever the simplex leaves it (on
+// range_hole_noise of bench/scan_cases.py: a minimax 19 x 19 within T at the points swung out
+// of the box and folded over the hole).
 bool minimax_axis(const Design& d, std::vector<double>& x, const std::vector<double>& data,
-                  double tol) {
+                  double tol, bool keep_weak) {
   const std::size_t N = data.size();
   const int n = static_cast<int>(x.size());
   std::vector<double> r;
@@ -79,7 +89,16 @@ bool minimax_axis(const Design& d, std::vector<double>& x, const std::vector<dou
   ClpSimplex lp;
   lp.setLogLevel(0);
   std::vector<double> col_lo(n + 1, -COIN_DBL_MAX), col_hi(n + 1, COIN_DBL_MAX), obj(n + 1, 0.0);
+  if (keep_weak) {
+    // The data's hold on each coefficient: the sum of its basis values over the points.
+    std::vector<double> held(n, 0.0);
+    for (std::size_t k = 0; k < d.value.size(); ++k) held[d.index[k]] += d.value[k];
+    const double mean = std::accumulate(held.begin(), held.end(), 0.0) / n;
+    for (int i = 0; i < n; ++i)
+      if (held[i] < kWeakHold * mean) col_lo[i] = col_hi[i] = 0.0;
+  }
   col_lo[n] = 0.0;
+  col_hi[n] = COIN_DBL_MAX;
   obj[n] = 1.0;
   CoinPackedMatrix empty(false, 0, 0);
   empty.setDimensions(0, n + 1);
@@ -152,20 +171,30 @@ bool minimax_axis(const Design& d, std::vector<double>& x, const std::vector<dou
   return false;
 }
 
-}  // namespace
-
-bool minimax_refine(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
-                    const Point& tolerance, Surface& s) {
-  const Design d = design_of(rows, u, v, s);
+bool refine(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
+            bool v_per_point, const Point& tolerance, Surface& s) {
+  const Design d = design_of(rows, u, v, s, v_per_point);
   const std::size_t n = s.control.size();
   for (int a = 0; a < 3; ++a) {
     std::vector<double> x(n), data(rows.total_points());
     for (std::size_t i = 0; i < n; ++i) x[i] = s.control[i][a];
     for (std::size_t k = 0; k < data.size(); ++k) data[k] = rows.points()[k][a];
-    if (!minimax_axis(d, x, data, tolerance[a])) return false;
+    if (!minimax_axis(d, x, data, tolerance[a], v_per_point)) return false;
     for (std::size_t i = 0; i < n; ++i) s.control[i][a] = x[i];
   }
   return true;
+}
+
+}  // namespace
+
+bool minimax_refine(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
+                    const Point& tolerance, Surface& s) {
+  return refine(rows, u, v, false, tolerance, s);
+}
+
+bool minimax_refine_points(const Rows& rows, const std::vector<double>& u,
+                           const std::vector<double>& v, const Point& tolerance, Surface& s) {
+  return refine(rows, u, v, true, tolerance, s);
 }
 
 bool minimax_affordable(std::size_t points, int nu, int nv) {

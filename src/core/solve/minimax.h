@@ -24,6 +24,12 @@ namespace sfit::detail {
 bool minimax_refine(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
                     const Point& tolerance, Surface& s);
 
+/// The same with one v per point (v: rows.total_points() values, the geometric rule's), where
+/// the coefficients the data hold weakly (below 5 % of the mean data term) keep their values
+/// from `s` (the LP has no smoothness term to decide them).
+bool minimax_refine_points(const Rows& rows, const std::vector<double>& u,
+                           const std::vector<double>& v, const Point& tolerance, Surface& s);
+
 /// Whether a minimax fit of this size is worth its cost inside the search.
 bool minimax_affordable(std::size_t points, int nu, int nv);
 
