@@ -8,6 +8,7 @@
 #include "fit_frame.h"
 #include "fit_monitor.h"
 #include "geometric_params.h"
+#include "geometric_reweight.h"
 #include "pair_search.h"
 #include "scattered_lsq.h"
 #include "sfit/fold_check.h"
@@ -96,7 +97,19 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
       if (folds(a.s, fr)) a.verdict.holds = false;
       return a;
     }
-    if (verdict.ratio > kSmoothingReach && w <= kSmoothing) return a;
+    if (verdict.ratio > kSmoothingReach && w <= kSmoothing) break;
+  }
+  // A near miss: the reweighted fit at the last weight (geometric_reweight.h).
+  if (!a.verdict.holds && a.verdict.ratio <= kReweightReach && !a.s.control.empty()) {
+    Point semi;
+    for (int i = 0; i < 3; ++i)
+      semi[i] = fr.tolerance[i] + (fr.tolerance[i] == 0 ? fr.roundoff : 0.0);
+    const auto holds = [&](const Surface& s) {
+      return fr.judge(s, u, v, nullptr, sample, false).holds &&
+             stays_near_where_covered(s, u, v, fr.centred_box) && !folds(s, fr);
+    };
+    if (reweight(sp, nu, nv, a.smoothing, semi, a.s, holds))
+      a.verdict = fr.judge(a.s, u, v, out, sample, false);
   }
   return a;
 }
@@ -194,15 +207,23 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // A first bound from the diagonal (k, k), k growing by 1.5: a few small solves, after which
   // the pair search never tries a pair with more control points than it.
   long start = bound;
+  int diagonal = 0;
   for (int k = std::max(range.min_u, range.min_v);
        static_cast<long>(k) * k < bound && range.affordable(k, k);
        k = std::max(k + 1, static_cast<int>(k * 1.5))) {
     if (first(k, k).holds) {
       start = static_cast<long>(k) * k + 1;
+      diagonal = k;
       break;
     }
   }
-  const PairChoice c = search_pairs(range, start, first);
+  PairChoice c = search_pairs(range, start, first);
+  if (c.nu == 0 && diagonal > 0) {
+    // The pairs search_pairs() tried (its columns need not include nv = k) all failed: the
+    // diagonal's pair holds, and one fewer along u or v is tried from it.
+    std::tie(c.nu, c.nv) = descend(diagonal, diagonal, range, first);
+    c.stop = "minimal";
+  }
   tried += first.tried();
   if (c.nu == 0) return std::nullopt;
   int nu = c.nu, nv = c.nv;
