@@ -66,8 +66,10 @@ bool folds(const Surface& s, const Frame& fr) {
 // lowered smoothing where T was missed by a little; a fold fails the pair.
 // From `start` the weight is lowered by kSmoothingLower while T is missed: always above
 // kSmoothing (a weight asked for), then once where T was missed by at most kSmoothingReach.
+// `reweighted`: where T is still missed by at most kReweightReach, the reweighted fit at the
+// last weight (geometric_reweight.h).
 Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, int nu, int nv,
-                DeviationCheck* out = nullptr, double start = kSmoothing) {
+                bool reweighted, DeviationCheck* out = nullptr, double start = kSmoothing) {
   Attempt a;
   const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
   if (nu < sp.min_u() || nv < sp.min_v()) return a;
@@ -99,8 +101,7 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
     }
     if (verdict.ratio > kSmoothingReach && w <= kSmoothing) break;
   }
-  // A near miss: the reweighted fit at the last weight (geometric_reweight.h).
-  if (!a.verdict.holds && a.verdict.ratio <= kReweightReach && !a.s.control.empty()) {
+  if (reweighted && !a.verdict.holds && a.verdict.ratio <= kReweightReach && !a.s.control.empty()) {
     Point semi;
     for (int i = 0; i < 3; ++i)
       semi[i] = fr.tolerance[i] + (fr.tolerance[i] == 0 ? fr.roundoff : 0.0);
@@ -129,12 +130,12 @@ void keep(Kept& kept, int nu, int nv, Attempt a) {
 }
 
 PairOracle oracle_for(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, bool report,
-                      Kept* kept = nullptr) {
-  return PairOracle([&sp, &fr, sample, report, kept](int nu, int nv) {
+                      bool reweighted, Kept* kept = nullptr) {
+  return PairOracle([&sp, &fr, sample, report, reweighted, kept](int nu, int nv) {
     if (static_cast<long>(nu) * nv > kMaxUnknowns || sp.cost(nu, nv) > kMaxCost ||
         static_cast<std::size_t>(nu) * nv > sp.rows().total_points())
       return PairVerdict{false, HUGE_VAL};
-    Attempt a = attempt(sp, fr, sample, nu, nv);
+    Attempt a = attempt(sp, fr, sample, nu, nv, reweighted);
     const PairVerdict v = a.verdict;
     if (kept && v.holds) keep(*kept, nu, nv, std::move(a));
     if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, report && v.holds);
@@ -165,25 +166,34 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   // where the best plane's found one. Where it found none below the bound the coordinate
   // plane's search was as long and found none either on every example set and generated
   // case (topobathy at 1e-3: 53 % more instructions for the whole fit, for nothing).
-  if (!g) {
-    if (pairs) *pairs = tried;
-    return g;
+  if (g) {
+    const long found = static_cast<long>(g->surface.count_u) * g->surface.count_v;
+    std::optional<GeometricFit> a = search_geometric_counted(fr, o, std::min(bound, found),
+                                                             corrections, tried, BasePlane::kAxis);
+    if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < found) {
+      a->stop += "; parameters from the coordinate plane nearest the best plane";
+      g = std::move(a);
+    }
   }
-  const long found = static_cast<long>(g->surface.count_u) * g->surface.count_v;
-  std::optional<GeometricFit> a =
-      search_geometric_counted(fr, o, std::min(bound, found), corrections, tried, BasePlane::kAxis);
-  if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < found) {
-    a->stop += "; parameters from the coordinate plane nearest the best plane";
-    g = std::move(a);
+  // The search again with the reweighted fit at near misses (geometric_reweight.h), below
+  // what the plain search found: a separate search, not the plain one's oracle, because a
+  // smaller pair held early can end the correction by projection at a larger count than the
+  // plain search reaches (a closed tube of uneven sections: 16 x 7 against 12 x 4).
+  const long found = g ? static_cast<long>(g->surface.count_u) * g->surface.count_v : bound;
+  std::optional<GeometricFit> r =
+      search_geometric_counted(fr, o, bound, corrections, tried, BasePlane::kBest, true);
+  if (r && static_cast<long>(r->surface.count_u) * r->surface.count_v < found) {
+    r->stop += "; least squares reweighted where it missed T by a little";
+    g = std::move(r);
   }
-  g->tried = tried;
+  if (g) g->tried = tried;
   if (pairs) *pairs = tried;
   return g;
 }
 
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
                                                      long bound, int corrections, long& tried,
-                                                     BasePlane plane) {
+                                                     BasePlane plane, bool reweighted) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v, plane);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
@@ -203,7 +213,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   auto sp = std::make_unique<ScatteredProblem>(srows, spec, fu, fv);
   PairRange range = range_for(*sp, srows);
   Kept kept_sp;  // of the problem *sp
-  PairOracle first = oracle_for(*sp, fr, sptr, !sample, &kept_sp);
+  PairOracle first = oracle_for(*sp, fr, sptr, !sample, reweighted, &kept_sp);
   // A first bound from the diagonal (k, k), k growing by 1.5: a few small solves, after which
   // the pair search never tries a pair with more control points than it.
   long start = bound;
@@ -232,7 +242,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   int rounds = 0;
   for (int round = 0; round < corrections; ++round) {
     const auto held = kept_sp.find({nu, nv});
-    const Attempt at = held != kept_sp.end() ? held->second : attempt(*sp, fr, sptr, nu, nv);
+    const Attempt at =
+        held != kept_sp.end() ? held->second : attempt(*sp, fr, sptr, nu, nv, reweighted);
     if (!at.verdict.holds) break;
     std::vector<double> u = sp->u_at(nu), v = sp->v_at(nv);
     project_parameters(at.s, srows, u, v, kNewtonSteps, fr.threads);
@@ -240,7 +251,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
     to_fractions(at.s, u, v, nfu, nfv);
     auto next = std::make_unique<ScatteredProblem>(srows, spec, nfu, nfv);
     Kept kept_next;
-    PairOracle o2 = oracle_for(*next, fr, sptr, !sample, &kept_next);
+    PairOracle o2 = oracle_for(*next, fr, sptr, !sample, reweighted, &kept_next);
     if (!o2(nu, nv).holds) {
       tried += o2.tried();
       break;
@@ -295,7 +306,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // Fine: verify on every point, raise until it holds, descend while one fewer holds.
   const ScatteredProblem full(fr.centred, spec, std::move(full_u), std::move(full_v));
   Kept kept;
-  PairOracle all = oracle_for(full, fr, nullptr, true, &kept);
+  PairOracle all = oracle_for(full, fr, nullptr, true, reweighted, &kept);
   if (sample) {
     bool holds = all(nu, nv).holds;
     for (int k = 1; !holds && k <= 8; ++k) {
@@ -322,7 +333,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // surface is this pair's.
   if (!sample) kept = std::move(kept_sp);
   auto it = kept.find({nu, nv});
-  const Attempt at = it != kept.end() ? std::move(it->second) : attempt(full, fr, nullptr, nu, nv);
+  const Attempt at =
+      it != kept.end() ? std::move(it->second) : attempt(full, fr, nullptr, nu, nv, reweighted);
   if (!at.verdict.holds) return std::nullopt;
   out.surface = at.s;
   out.u = full.u_at(nu);
@@ -343,12 +355,13 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
 }
 
 std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOptions& o, int nu,
-                                                int nv, double smoothing, BasePlane plane) {
+                                                int nv, double smoothing, BasePlane plane,
+                                                bool reweighted) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v, plane);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
   auto sp = std::make_unique<ScatteredProblem>(fr.centred, spec, std::move(f->u), std::move(f->v));
-  Attempt at = attempt(*sp, fr, nullptr, nu, nv, nullptr, smoothing);
+  Attempt at = attempt(*sp, fr, nullptr, nu, nv, reweighted, nullptr, smoothing);
   if (at.s.control.empty()) return std::nullopt;
   GeometricFit g;
   g.tried = 1;
@@ -360,7 +373,7 @@ std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOption
     std::vector<double> nfu, nfv;
     to_fractions(at.s, u, v, nfu, nfv);
     auto next = std::make_unique<ScatteredProblem>(fr.centred, spec, nfu, nfv);
-    Attempt a = attempt(*next, fr, nullptr, nu, nv, nullptr, smoothing);
+    Attempt a = attempt(*next, fr, nullptr, nu, nv, reweighted, nullptr, smoothing);
     ++g.tried;
     if (a.s.control.empty() || !(a.verdict.holds || a.verdict.ratio < at.verdict.ratio)) break;
     at = std::move(a);

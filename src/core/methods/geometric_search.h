@@ -51,24 +51,30 @@ inline constexpr long kGeometricMaxUnknowns = 20000;
 /// `pairs`: set to the pairs solved, whether or not a surface is found.
 /// On an open sheet, where the best plane's parameters gave a surface, the search runs again
 /// over its coordinate plane's (BasePlane::kAxis, geometric_params.h) below that count; the
-/// fewer control points are kept (a tie: the best plane's).
+/// fewer control points are kept (a tie: the best plane's). Then, over the best plane, below
+/// the count found (or `bound`), the search with the reweighted fit at near misses
+/// (search_geometric_counted(), `reweighted`); kept where it has fewer control points.
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections = kCorrectionRounds,
                                              long* pairs = nullptr);
 /// search_geometric() over one base plane (`plane`), adding the pairs solved to `tried` as it
-/// goes.
+/// goes. `reweighted`: a pair whose least-squares fit misses T by at most kReweightReach is
+/// fitted again by reweighted least squares (geometric_reweight.h) and holds where that does.
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
                                                      long bound, int corrections, long& tried,
-                                                     BasePlane plane = BasePlane::kBest);
+                                                     BasePlane plane = BasePlane::kBest,
+                                                     bool reweighted = false);
 
 /// The rule's surface at exactly (nu, nv) (FitOptions::counts), holding or not; nullopt where
 /// the rule has no base surface for the rows. The smoothness weight starts at `smoothing`
 /// (relative, scattered_lsq.h) and is lowered while the surface misses T (GeometricFit::
 /// smoothing says which it was made with).
-/// `plane`: the base plane of an open sheet (geometric_params.h).
+/// `plane`: the base plane of an open sheet (geometric_params.h). `reweighted`: as in
+/// search_geometric_counted() (the search's pair may have held only reweighted).
 std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOptions& o, int nu,
                                                 int nv, double smoothing = kSmoothing,
-                                                BasePlane plane = BasePlane::kBest);
+                                                BasePlane plane = BasePlane::kBest,
+                                                bool reweighted = true);
 
 /// The result of a surface of the rule: assemble() with the shape measured on the surface
 /// (the fold on columns sampled evenly across the domain; the rows are no iso-curves, so
