@@ -100,34 +100,22 @@ TEST(GeometricBasePlane, SearchTriesTheCoordinatePlane) {
   long tried = 0;
   const auto best_only = detail::search_geometric_counted(
       fr, o, LONG_MAX, detail::kCorrectionRounds, tried, detail::BasePlane::kBest);
-  const long a =
-      best_only ? static_cast<long>(best_only->surface.count_u) * best_only->surface.count_v : 0;
-  const auto axis = detail::search_geometric_counted(fr, o, a, detail::kCorrectionRounds, tried,
-                                                     detail::BasePlane::kAxis);
   const auto both = detail::search_geometric(fr, o, LONG_MAX);
-  ASSERT_TRUE(best_only && axis && both);
-  const long b = static_cast<long>(axis->surface.count_u) * axis->surface.count_v;
-  const long all = static_cast<long>(both->surface.count_u) * both->surface.count_v;
-  std::printf(
-      "[ measured ] best plane %d x %d, coordinate plane below it %d x %d, the search "
-      "%d x %d (%s)\n",
-      best_only->surface.count_u, best_only->surface.count_v, axis->surface.count_u,
-      axis->surface.count_v, both->surface.count_u, both->surface.count_v, both->stop.c_str());
+  ASSERT_TRUE(best_only && both);
+  const long a = static_cast<long>(best_only->surface.count_u) * best_only->surface.count_v;
+  const long b = static_cast<long>(both->surface.count_u) * both->surface.count_v;
+  std::printf("[ measured ] best plane %d x %d, both planes %d x %d (%s)\n",
+              best_only->surface.count_u, best_only->surface.count_v, both->surface.count_u,
+              both->surface.count_v, both->stop.c_str());
   EXPECT_EQ(a, 15 * 12);  // measured 2026-12-03
   EXPECT_EQ(b, 13 * 12);
-  // The search: both planes, then the reweighted search below (geometric_reweight.h), which
-  // holds 11 x 12 here (measured 2026-12-03).
-  EXPECT_LE(all, b);
-  EXPECT_EQ(all, 11 * 12);
-  EXPECT_NE(both->stop.find("reweighted"), std::string::npos);
-  for (const auto* g : {&*axis, &*both}) {
-    DeviationCheck c;
-    EXPECT_TRUE(fr.judge(g->surface, g->u, g->v, &c, nullptr, false).holds);
-    EXPECT_TRUE(c.within);
-  }
+  EXPECT_NE(both->stop.find("coordinate plane"), std::string::npos);
+  DeviationCheck c;
+  EXPECT_TRUE(fr.judge(both->surface, both->u, both->v, &c, nullptr, false).holds);
+  EXPECT_TRUE(c.within);
   const FitResult f = fit_surface(rows, o);
   EXPECT_TRUE(f.report.within_tolerance);
-  EXPECT_LE(test::size_of(f), all);
+  EXPECT_LE(test::size_of(f), b);
 }
 
 // Counts given (FitOptions::counts): where the best plane's surface misses T at the search's
@@ -139,9 +127,7 @@ TEST(GeometricBasePlane, CountsGivenTakeTheCoordinatePlaneWhereTheBestMisses) {
   o.parametrization = Parametrization::kGeometric;
   o.counts = std::array<int, 2>{13, 12};
   const detail::Frame fr(rows, o);
-  // (Least squares alone: reweighted, geometric_reweight.h, the best plane's holds here.)
-  const auto best = detail::geometric_at_counts(fr, o, 13, 12, detail::kSmoothing,
-                                                detail::BasePlane::kBest, false);
+  const auto best = detail::geometric_at_counts(fr, o, 13, 12);
   ASSERT_TRUE(best);
   DeviationCheck c;
   fr.judge(best->surface, best->u, best->v, &c, nullptr, false);

@@ -8,6 +8,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "fit_frame.h"
@@ -26,13 +27,13 @@ double field(double x, double y) {
          0.2 * std::exp(-((x - 0.3) * (x - 0.3) + (y + 0.2) * (y + 0.2)) / 0.05) + 0.1 * x * y;
 }
 
-// A range image, 40 lines of 60 samples, with a round hole (rows run across it).
-Rows range_image_with_hole() {
+// A range image, `lines` lines of `samples` samples, with a round hole (rows run across it).
+Rows range_image_with_hole(int lines = 40, int samples = 60) {
   Rows rows;
-  for (int j = 0; j < 40; ++j) {
-    const double y = -1 + 2.0 * j / 39;
-    for (int k = 0; k < 60; ++k) {
-      const double x = -1 + 2.0 * k / 59;
+  for (int j = 0; j < lines; ++j) {
+    const double y = -1 + 2.0 * j / (lines - 1);
+    for (int k = 0; k < samples; ++k) {
+      const double x = -1 + 2.0 * k / (samples - 1);
       if (x * x + y * y > 0.16) rows.push_point(Point(x, y, field(x, y)));
     }
     rows.end_row();
@@ -125,22 +126,54 @@ TEST(GeometricReweight, HoldsAtNearMissesWithFewerControlPoints) {
   EXPECT_EQ(reweighted_least, 156);
 }
 
-// The search with it: never more control points than the pair the plain least squares held
-// at (measured before the reweighting: 15 x 13), T at every point evaluated here.
+// The search with it (data of at least kReweightPoints points): never more control points
+// than the plain searches over either plane, and here fewer; T at every point evaluated here.
 TEST(GeometricReweight, SearchHoldsWithFewerControlPoints) {
+  const Rows rows = range_image_with_hole(100, 120);
+  ASSERT_GE(rows.total_points(), detail::kReweightPoints);
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, 1e-3);
+  const detail::Frame fr(rows, o);
+  long tried = 0;
+  const auto best = detail::search_geometric_counted(fr, o, LONG_MAX, detail::kCorrectionRounds,
+                                                     tried, detail::BasePlane::kBest, false);
+  const auto axis = detail::search_geometric_counted(fr, o, LONG_MAX, detail::kCorrectionRounds,
+                                                     tried, detail::BasePlane::kAxis, false);
+  const auto g = detail::search_geometric(fr, o, LONG_MAX);
+  ASSERT_TRUE(best && g);
+  const auto size = [](const detail::GeometricFit& f) {
+    return static_cast<long>(f.surface.count_u) * f.surface.count_v;
+  };
+  const long plain = axis ? std::min(size(*best), size(*axis)) : size(*best);
+  std::printf(
+      "[ measured ] range image with a hole (%zu points) at 1e-3: %d x %d (%s); least "
+      "squares alone %ld\n",
+      rows.total_points(), g->surface.count_u, g->surface.count_v, g->stop.c_str(), plain);
+  EXPECT_LT(size(*g), plain);
+  EXPECT_EQ(plain, 195);  // golden (2026-12-03): 14 x 13 against 15 x 13 (both planes)
+  EXPECT_EQ(g->surface.count_u, 14);
+  EXPECT_EQ(g->surface.count_v, 13);
+  EXPECT_NE(g->stop.find("reweighted"), std::string::npos);
+  EXPECT_LE(worst_ratio(g->surface, fr.centred, g->u, g->v, fr.tolerance), 1.0);
+  DeviationCheck c;
+  EXPECT_TRUE(fr.judge(g->surface, g->u, g->v, &c, nullptr, false).holds);
+  EXPECT_TRUE(c.within);
+  EXPECT_TRUE(detail::stays_near_where_covered(g->surface, g->u, g->v, fr.centred_box));
+  EXPECT_LE(detail::geometric_fold(g->surface), kFoldRelative * fr.box.diagonal());
+}
+
+// Below kReweightPoints the search is the plain one's (the same pair).
+TEST(GeometricReweight, SmallDataKeepTheLeastSquaresSearch) {
   const Rows rows = range_image_with_hole();
+  ASSERT_LT(rows.total_points(), detail::kReweightPoints);
   FitOptions o;
   o.tolerance = relative_tolerance(rows, 1e-3);
   const detail::Frame fr(rows, o);
   const auto g = detail::search_geometric(fr, o, LONG_MAX);
   ASSERT_TRUE(g);
-  const long n = static_cast<long>(g->surface.count_u) * g->surface.count_v;
-  std::printf("[ measured ] range image with a hole at 1e-3: %d x %d (before: 15 x 13)\n",
-              g->surface.count_u, g->surface.count_v);
-  EXPECT_LT(n, 15 * 13);
-  EXPECT_EQ(g->surface.count_u, 12);  // golden (2026-12-03)
+  EXPECT_EQ(g->surface.count_u, 15);  // golden: GeometricRule's measured pair
   EXPECT_EQ(g->surface.count_v, 13);
-  EXPECT_LE(worst_ratio(g->surface, fr.centred, g->u, g->v, fr.tolerance), 1.0);
+  EXPECT_EQ(g->stop.find("reweighted"), std::string::npos);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "geometric_search.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -101,7 +102,8 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
     }
     if (verdict.ratio > kSmoothingReach && w <= kSmoothing) break;
   }
-  if (reweighted && !a.verdict.holds && a.verdict.ratio <= kReweightReach && !a.s.control.empty()) {
+  if (reweighted && fr.centred.total_points() >= kReweightPoints && !a.verdict.holds &&
+      a.verdict.ratio <= kReweightReach && !a.s.control.empty()) {
     Point semi;
     for (int i = 0; i < 3; ++i)
       semi[i] = fr.tolerance[i] + (fr.tolerance[i] == 0 ? fr.roundoff : 0.0);
@@ -129,15 +131,18 @@ void keep(Kept& kept, int nu, int nv, Attempt a) {
   kept[{nu, nv}] = std::move(a);
 }
 
+// `near`: lowered to the control points of each pair that misses T by at most kReweightReach.
 PairOracle oracle_for(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, bool report,
-                      bool reweighted, Kept* kept = nullptr) {
-  return PairOracle([&sp, &fr, sample, report, reweighted, kept](int nu, int nv) {
+                      bool reweighted, Kept* kept = nullptr, long* near = nullptr) {
+  return PairOracle([&sp, &fr, sample, report, reweighted, kept, near](int nu, int nv) {
     if (static_cast<long>(nu) * nv > kMaxUnknowns || sp.cost(nu, nv) > kMaxCost ||
         static_cast<std::size_t>(nu) * nv > sp.rows().total_points())
       return PairVerdict{false, HUGE_VAL};
     Attempt a = attempt(sp, fr, sample, nu, nv, reweighted);
     const PairVerdict v = a.verdict;
     if (kept && v.holds) keep(*kept, nu, nv, std::move(a));
+    if (near && !v.holds && v.ratio <= kReweightReach)
+      *near = std::min(*near, static_cast<long>(nu) * nv);
     if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, report && v.holds);
     return v;
   });
@@ -161,15 +166,17 @@ PairRange range_for(const ScatteredProblem& sp, const Rows& rows) {
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections, long* pairs) {
   long tried = 0;
-  std::optional<GeometricFit> g = search_geometric_counted(fr, o, bound, corrections, tried);
+  long near = LONG_MAX;  // the fewest control points of a pair the plain searches nearly held
+  std::optional<GeometricFit> g =
+      search_geometric_counted(fr, o, bound, corrections, tried, BasePlane::kBest, false, &near);
   // The coordinate plane's parameters, below the count found (geometric_params.h): only
   // where the best plane's found one. Where it found none below the bound the coordinate
   // plane's search was as long and found none either on every example set and generated
   // case (topobathy at 1e-3: 53 % more instructions for the whole fit, for nothing).
   if (g) {
     const long found = static_cast<long>(g->surface.count_u) * g->surface.count_v;
-    std::optional<GeometricFit> a = search_geometric_counted(fr, o, std::min(bound, found),
-                                                             corrections, tried, BasePlane::kAxis);
+    std::optional<GeometricFit> a = search_geometric_counted(
+        fr, o, std::min(bound, found), corrections, tried, BasePlane::kAxis, false, &near);
     if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < found) {
       a->stop += "; parameters from the coordinate plane nearest the best plane";
       g = std::move(a);
@@ -179,9 +186,11 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   // what the plain search found: a separate search, not the plain one's oracle, because a
   // smaller pair held early can end the correction by projection at a larger count than the
   // plain search reaches (a closed tube of uneven sections: 16 x 7 against 12 x 4).
+  // Only where the plain searches missed T by at most kReweightReach below their count.
   const long found = g ? static_cast<long>(g->surface.count_u) * g->surface.count_v : bound;
-  std::optional<GeometricFit> r =
-      search_geometric_counted(fr, o, bound, corrections, tried, BasePlane::kBest, true);
+  std::optional<GeometricFit> r;
+  if (near < found && fr.centred.total_points() >= kReweightPoints)
+    r = search_geometric_counted(fr, o, bound, corrections, tried, BasePlane::kBest, true);
   if (r && static_cast<long>(r->surface.count_u) * r->surface.count_v < found) {
     r->stop += "; least squares reweighted where it missed T by a little";
     g = std::move(r);
@@ -193,7 +202,8 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
 
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
                                                      long bound, int corrections, long& tried,
-                                                     BasePlane plane, bool reweighted) {
+                                                     BasePlane plane, bool reweighted,
+                                                     long* near_miss) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v, plane);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
@@ -213,7 +223,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   auto sp = std::make_unique<ScatteredProblem>(srows, spec, fu, fv);
   PairRange range = range_for(*sp, srows);
   Kept kept_sp;  // of the problem *sp
-  PairOracle first = oracle_for(*sp, fr, sptr, !sample, reweighted, &kept_sp);
+  PairOracle first = oracle_for(*sp, fr, sptr, !sample, reweighted, &kept_sp, near_miss);
   // A first bound from the diagonal (k, k), k growing by 1.5: a few small solves, after which
   // the pair search never tries a pair with more control points than it.
   long start = bound;
@@ -251,7 +261,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
     to_fractions(at.s, u, v, nfu, nfv);
     auto next = std::make_unique<ScatteredProblem>(srows, spec, nfu, nfv);
     Kept kept_next;
-    PairOracle o2 = oracle_for(*next, fr, sptr, !sample, reweighted, &kept_next);
+    PairOracle o2 = oracle_for(*next, fr, sptr, !sample, reweighted, &kept_next, near_miss);
     if (!o2(nu, nv).holds) {
       tried += o2.tried();
       break;
@@ -306,7 +316,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // Fine: verify on every point, raise until it holds, descend while one fewer holds.
   const ScatteredProblem full(fr.centred, spec, std::move(full_u), std::move(full_v));
   Kept kept;
-  PairOracle all = oracle_for(full, fr, nullptr, true, reweighted, &kept);
+  PairOracle all = oracle_for(full, fr, nullptr, true, reweighted, &kept, near_miss);
   if (sample) {
     bool holds = all(nu, nv).holds;
     for (int k = 1; !holds && k <= 8; ++k) {

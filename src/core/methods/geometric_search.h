@@ -53,17 +53,21 @@ inline constexpr long kGeometricMaxUnknowns = 20000;
 /// over its coordinate plane's (BasePlane::kAxis, geometric_params.h) below that count; the
 /// fewer control points are kept (a tie: the best plane's). Then, over the best plane, below
 /// the count found (or `bound`), the search with the reweighted fit at near misses
-/// (search_geometric_counted(), `reweighted`); kept where it has fewer control points.
+/// (search_geometric_counted(), `reweighted`), where the plain searches missed by at most
+/// kReweightReach at fewer control points than they found; kept where it has fewer.
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections = kCorrectionRounds,
                                              long* pairs = nullptr);
 /// search_geometric() over one base plane (`plane`), adding the pairs solved to `tried` as it
 /// goes. `reweighted`: a pair whose least-squares fit misses T by at most kReweightReach is
 /// fitted again by reweighted least squares (geometric_reweight.h) and holds where that does.
+/// `near_miss`: lowered to the control points of every pair solved that missed T (or its
+/// guards) by at most kReweightReach.
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
                                                      long bound, int corrections, long& tried,
                                                      BasePlane plane = BasePlane::kBest,
-                                                     bool reweighted = false);
+                                                     bool reweighted = false,
+                                                     long* near_miss = nullptr);
 
 /// The rule's surface at exactly (nu, nv) (FitOptions::counts), holding or not; nullopt where
 /// the rule has no base surface for the rows. The smoothness weight starts at `smoothing`
