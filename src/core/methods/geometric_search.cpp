@@ -1,6 +1,7 @@
 #include "geometric_search.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -9,6 +10,7 @@
 #include "fit_monitor.h"
 #include "geometric_minimax.h"
 #include "geometric_params.h"
+#include "geometric_reweight.h"
 #include "pair_search.h"
 #include "scattered_lsq.h"
 #include "sfit/fold_check.h"
@@ -66,8 +68,10 @@ bool folds(const Surface& s, const Frame& fr) {
 // lowered smoothing where T was missed by a little; a fold fails the pair.
 // From `start` the weight is lowered by kSmoothingLower while T is missed: always above
 // kSmoothing (a weight asked for), then once where T was missed by at most kSmoothingReach.
+// `reweighted`: where T is still missed by at most kReweightReach, the reweighted fit at the
+// last weight (geometric_reweight.h).
 Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, int nu, int nv,
-                DeviationCheck* out = nullptr, double start = kSmoothing) {
+                bool reweighted, DeviationCheck* out = nullptr, double start = kSmoothing) {
   Attempt a;
   const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
   if (nu < sp.min_u() || nv < sp.min_v()) return a;
@@ -97,7 +101,19 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
       if (folds(a.s, fr)) a.verdict.holds = false;
       return a;
     }
-    if (verdict.ratio > kSmoothingReach && w <= kSmoothing) return a;
+    if (verdict.ratio > kSmoothingReach && w <= kSmoothing) break;
+  }
+  if (reweighted && fr.centred.total_points() >= kReweightPoints && !a.verdict.holds &&
+      a.verdict.ratio <= kReweightReach && !a.s.control.empty()) {
+    Point semi;
+    for (int i = 0; i < 3; ++i)
+      semi[i] = fr.tolerance[i] + (fr.tolerance[i] == 0 ? fr.roundoff : 0.0);
+    const auto holds = [&](const Surface& s) {
+      return fr.judge(s, u, v, nullptr, sample, false).holds &&
+             stays_near_where_covered(s, u, v, fr.centred_box) && !folds(s, fr);
+    };
+    if (reweight(sp, nu, nv, a.smoothing, semi, a.s, holds))
+      a.verdict = fr.judge(a.s, u, v, out, sample, false);
   }
   return a;
 }
@@ -116,15 +132,18 @@ void keep(Kept& kept, int nu, int nv, Attempt a) {
   kept[{nu, nv}] = std::move(a);
 }
 
+// `near`: lowered to the control points of each pair that misses T by at most kReweightReach.
 PairOracle oracle_for(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, bool report,
-                      Kept* kept = nullptr) {
-  return PairOracle([&sp, &fr, sample, report, kept](int nu, int nv) {
+                      bool reweighted, Kept* kept = nullptr, long* near = nullptr) {
+  return PairOracle([&sp, &fr, sample, report, reweighted, kept, near](int nu, int nv) {
     if (static_cast<long>(nu) * nv > kMaxUnknowns || sp.cost(nu, nv) > kMaxCost ||
         static_cast<std::size_t>(nu) * nv > sp.rows().total_points())
       return PairVerdict{false, HUGE_VAL};
-    Attempt a = attempt(sp, fr, sample, nu, nv);
+    Attempt a = attempt(sp, fr, sample, nu, nv, reweighted);
     const PairVerdict v = a.verdict;
     if (kept && v.holds) keep(*kept, nu, nv, std::move(a));
+    if (near && !v.holds && v.ratio <= kReweightReach)
+      *near = std::min(*near, static_cast<long>(nu) * nv);
     if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, report && v.holds);
     return v;
   });
@@ -148,32 +167,45 @@ PairRange range_for(const ScatteredProblem& sp, const Rows& rows) {
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections, long* pairs, long linf_bound) {
   long tried = 0;
-  std::optional<GeometricFit> g =
-      search_geometric_counted(fr, o, bound, corrections, tried, BasePlane::kBest, linf_bound);
+  long near = LONG_MAX;  // the fewest control points of a pair the plain searches nearly held
+  std::optional<GeometricFit> g = search_geometric_counted(
+      fr, o, bound, corrections, tried, BasePlane::kBest, linf_bound, false, &near);
   // The coordinate plane's parameters, below the count found (geometric_params.h): only
   // where the best plane's found one. Where it found none below the bound the coordinate
   // plane's search was as long and found none either on every example set and generated
   // case (topobathy at 1e-3: 53 % more instructions for the whole fit, for nothing).
-  if (!g) {
-    if (pairs) *pairs = tried;
-    return g;
+  if (g) {
+    const long found = static_cast<long>(g->surface.count_u) * g->surface.count_v;
+    std::optional<GeometricFit> a =
+        search_geometric_counted(fr, o, std::min(bound, found), corrections, tried,
+                                 BasePlane::kAxis, std::min(linf_bound, found), false, &near);
+    if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < found) {
+      a->stop += "; parameters from the coordinate plane nearest the best plane";
+      g = std::move(a);
+    }
   }
-  const long found = static_cast<long>(g->surface.count_u) * g->surface.count_v;
-  std::optional<GeometricFit> a =
-      search_geometric_counted(fr, o, std::min(bound, found), corrections, tried, BasePlane::kAxis,
-                               std::min(linf_bound, found));
-  if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < found) {
-    a->stop += "; parameters from the coordinate plane nearest the best plane";
-    g = std::move(a);
+  // The search again with the reweighted fit at near misses (geometric_reweight.h), below
+  // what the plain search found: a separate search, not the plain one's oracle, because a
+  // smaller pair held early can end the correction by projection at a larger count than the
+  // plain search reaches (a closed tube of uneven sections: 16 x 7 against 12 x 4).
+  // Only where the plain searches missed T by at most kReweightReach below their count.
+  const long found = g ? static_cast<long>(g->surface.count_u) * g->surface.count_v : bound;
+  std::optional<GeometricFit> r;
+  if (near < found && fr.centred.total_points() >= kReweightPoints)
+    r = search_geometric_counted(fr, o, bound, corrections, tried, BasePlane::kBest, 0, true);
+  if (r && static_cast<long>(r->surface.count_u) * r->surface.count_v < found) {
+    r->stop += "; least squares reweighted where it missed T by a little";
+    g = std::move(r);
   }
-  g->tried = tried;
+  if (g) g->tried = tried;
   if (pairs) *pairs = tried;
   return g;
 }
 
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
                                                      long bound, int corrections, long& tried,
-                                                     BasePlane plane, long linf_bound) {
+                                                     BasePlane plane, long linf_bound,
+                                                     bool reweighted, long* near_miss) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v, plane);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
@@ -193,24 +225,32 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   auto sp = std::make_unique<ScatteredProblem>(srows, spec, fu, fv);
   PairRange range = range_for(*sp, srows);
   Kept kept_sp;  // of the problem *sp
-  PairOracle first = oracle_for(*sp, fr, sptr, !sample, &kept_sp);
+  PairOracle first = oracle_for(*sp, fr, sptr, !sample, reweighted, &kept_sp, near_miss);
   // A first bound from the diagonal (k, k), k growing by 1.5: a few small solves, after which
   // the pair search never tries a pair with more control points than it.
   long start = bound;
+  int diagonal = 0;
   for (int k = std::max(range.min_u, range.min_v);
        static_cast<long>(k) * k < bound && range.affordable(k, k);
        k = std::max(k + 1, static_cast<int>(k * 1.5))) {
     if (first(k, k).holds) {
       start = static_cast<long>(k) * k + 1;
+      diagonal = k;
       break;
     }
   }
-  const PairChoice c = search_pairs(range, start, first);
+  PairChoice c = search_pairs(range, start, first);
+  if (c.nu == 0 && diagonal > 0) {
+    // The pairs search_pairs() tried (its columns need not include nv = k) all failed: the
+    // diagonal's pair holds, and one fewer along u or v is tried from it.
+    std::tie(c.nu, c.nv) = descend(diagonal, diagonal, range, first);
+    c.stop = "minimal";
+  }
   tried += first.tried();
   if (c.nu == 0) {
     // Nothing held by least squares: minimax at the nearest pairs (geometric_minimax.h).
     const GeometricLeastSquares ls = [&fr](const ScatteredProblem& p, int nu, int nv) {
-      Attempt a = attempt(p, fr, nullptr, nu, nv);
+      Attempt a = attempt(p, fr, nullptr, nu, nv, false);
       return GeometricTry{a.verdict.holds, std::move(a.s), a.smoothing};
     };
     return geometric_minimax(fr, o, spec, *f, first, std::min(bound, linf_bound), plane, ls, tried);
@@ -221,7 +261,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   int rounds = 0;
   for (int round = 0; round < corrections; ++round) {
     const auto held = kept_sp.find({nu, nv});
-    const Attempt at = held != kept_sp.end() ? held->second : attempt(*sp, fr, sptr, nu, nv);
+    const Attempt at =
+        held != kept_sp.end() ? held->second : attempt(*sp, fr, sptr, nu, nv, reweighted);
     if (!at.verdict.holds) break;
     std::vector<double> u = sp->u_at(nu), v = sp->v_at(nv);
     project_parameters(at.s, srows, u, v, kNewtonSteps, fr.threads);
@@ -229,7 +270,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
     to_fractions(at.s, u, v, nfu, nfv);
     auto next = std::make_unique<ScatteredProblem>(srows, spec, nfu, nfv);
     Kept kept_next;
-    PairOracle o2 = oracle_for(*next, fr, sptr, !sample, &kept_next);
+    PairOracle o2 = oracle_for(*next, fr, sptr, !sample, reweighted, &kept_next, near_miss);
     if (!o2(nu, nv).holds) {
       tried += o2.tried();
       break;
@@ -284,7 +325,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // Fine: verify on every point, raise until it holds, descend while one fewer holds.
   const ScatteredProblem full(fr.centred, spec, std::move(full_u), std::move(full_v));
   Kept kept;
-  PairOracle all = oracle_for(full, fr, nullptr, true, &kept);
+  PairOracle all = oracle_for(full, fr, nullptr, true, reweighted, &kept, near_miss);
   if (sample) {
     bool holds = all(nu, nv).holds;
     for (int k = 1; !holds && k <= 8; ++k) {
@@ -311,7 +352,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // surface is this pair's.
   if (!sample) kept = std::move(kept_sp);
   auto it = kept.find({nu, nv});
-  const Attempt at = it != kept.end() ? std::move(it->second) : attempt(full, fr, nullptr, nu, nv);
+  const Attempt at =
+      it != kept.end() ? std::move(it->second) : attempt(full, fr, nullptr, nu, nv, reweighted);
   if (!at.verdict.holds) return std::nullopt;
   out.surface = at.s;
   out.u = full.u_at(nu);
@@ -332,12 +374,13 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
 }
 
 std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOptions& o, int nu,
-                                                int nv, double smoothing, BasePlane plane) {
+                                                int nv, double smoothing, BasePlane plane,
+                                                bool reweighted) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v, plane);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
   auto sp = std::make_unique<ScatteredProblem>(fr.centred, spec, std::move(f->u), std::move(f->v));
-  Attempt at = attempt(*sp, fr, nullptr, nu, nv, nullptr, smoothing);
+  Attempt at = attempt(*sp, fr, nullptr, nu, nv, reweighted, nullptr, smoothing);
   if (at.s.control.empty()) return std::nullopt;
   GeometricFit g;
   g.tried = 1;
@@ -349,7 +392,7 @@ std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOption
     std::vector<double> nfu, nfv;
     to_fractions(at.s, u, v, nfu, nfv);
     auto next = std::make_unique<ScatteredProblem>(fr.centred, spec, nfu, nfv);
-    Attempt a = attempt(*next, fr, nullptr, nu, nv, nullptr, smoothing);
+    Attempt a = attempt(*next, fr, nullptr, nu, nv, reweighted, nullptr, smoothing);
     ++g.tried;
     if (a.s.control.empty() || !(a.verdict.holds || a.verdict.ratio < at.verdict.ratio)) break;
     at = std::move(a);

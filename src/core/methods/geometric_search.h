@@ -58,24 +58,35 @@ inline constexpr long kGeometricMaxUnknowns = 20000;
 /// `linf_bound` too (FitNorm::kAuto and kLinf; geometric_minimax.h). The default passes 0
 /// where a row rule found a pair (an LP of a few hundred unknowns on 2 x 10^4 points can take a
 /// minute: uneven_rows of bench/scan_cases.py at 1e-3), else its bound.
+/// Then, over the best plane, below the count found (or `bound`), the search with the
+/// reweighted fit at near misses (search_geometric_counted(), `reweighted`; no minimax), where the
+/// plain searches missed by at most kReweightReach at fewer control points than they found; kept
+/// where it has fewer.
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections = kCorrectionRounds,
                                              long* pairs = nullptr, long linf_bound = LONG_MAX);
 /// search_geometric() over one base plane (`plane`), adding the pairs solved to `tried` as it
-/// goes.
+/// goes. `reweighted`: a pair whose least-squares fit misses T by at most kReweightReach is
+/// fitted again by reweighted least squares (geometric_reweight.h) and holds where that does.
+/// `near_miss`: lowered to the control points of every pair solved that missed T (or its
+/// guards) by at most kReweightReach.
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
                                                      long bound, int corrections, long& tried,
                                                      BasePlane plane = BasePlane::kBest,
-                                                     long linf_bound = LONG_MAX);
+                                                     long linf_bound = LONG_MAX,
+                                                     bool reweighted = false,
+                                                     long* near_miss = nullptr);
 
 /// The rule's surface at exactly (nu, nv) (FitOptions::counts), holding or not; nullopt where
 /// the rule has no base surface for the rows. The smoothness weight starts at `smoothing`
 /// (relative, scattered_lsq.h) and is lowered while the surface misses T (GeometricFit::
 /// smoothing says which it was made with).
-/// `plane`: the base plane of an open sheet (geometric_params.h).
+/// `plane`: the base plane of an open sheet (geometric_params.h). `reweighted`: as in
+/// search_geometric_counted() (the search's pair may have held only reweighted).
 std::optional<GeometricFit> geometric_at_counts(const Frame& fr, const FitOptions& o, int nu,
                                                 int nv, double smoothing = kSmoothing,
-                                                BasePlane plane = BasePlane::kBest);
+                                                BasePlane plane = BasePlane::kBest,
+                                                bool reweighted = true);
 
 /// The result of a surface of the rule: assemble() with the shape measured on the surface
 /// (the fold on columns sampled evenly across the domain; the rows are no iso-curves, so

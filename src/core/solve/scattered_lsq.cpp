@@ -165,12 +165,19 @@ bool ScatteredProblem::solve(int nu, int nv, double smoothing, Surface& out, dou
   return ok;
 }
 
-void ScatteredProblem::assemble(int nu, int nv, std::vector<double>& band,
-                                std::vector<Point>& rhs) const {
+void ScatteredProblem::assemble(int nu, int nv, std::vector<double>& band, std::vector<Point>& rhs,
+                                std::span<const double> extra) const {
   const int W = (2 * spec_.degree_u + 1) * (2 * spec_.degree_v + 1);
   const std::size_t N = static_cast<std::size_t>(nu) * nv;
   const std::vector<Point>& pts = rows_.points();
-  const std::vector<double>& wts = rows_.weights();
+  std::vector<double> combined;
+  if (!extra.empty()) {
+    const std::vector<double>& own = rows_.weights();
+    combined.assign(extra.begin(), extra.end());
+    if (!own.empty())
+      for (std::size_t k = 0; k < combined.size(); ++k) combined[k] *= own[k];
+  }
+  const std::vector<double>& wts = extra.empty() ? rows_.weights() : combined;
   const std::size_t n = pts.size(), blocks = (n + kBlock - 1) / kBlock;
   const int threads = std::max(1, std::min<int>(spec_.threads, static_cast<int>(blocks)));
   struct Part {

@@ -126,7 +126,10 @@ class ScatteredProblem {
              const Point* normal = nullptr) const;
   /// solve()'s data term at (nu, nv) (scattered_add() over all points), for scattered_solve()
   /// at several smoothness weights without summing it again. Counts at least min_u(), min_v().
-  void assemble(int nu, int nv, std::vector<double>& band, std::vector<Point>& rhs) const;
+  /// `extra` (one per point, or empty): each point's weight multiplied by it (the reweighted
+  /// fit of geometric_reweight.h); empty gives the same bits as before.
+  void assemble(int nu, int nv, std::vector<double>& band, std::vector<Point>& rhs,
+                std::span<const double> extra = {}) const;
   /// The flops of solve()'s factorisation at (nu, nv): unknowns x band^2 / 2.
   double cost(int nu, int nv) const;
 
