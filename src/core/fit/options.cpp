@@ -150,7 +150,8 @@ std::vector<OptionSpec> make_table() {
        0,
        {},
        "the fold guard: a surface that folds between rows is refitted with other rules across "
-       "the rows, then one degree lower across them; --no-fold-guard (fold_guard=False) keeps "
+       "the rows, then at lower degrees across them (down to 1); --no-fold-guard "
+       "(fold_guard=False) keeps "
        "it, at the degree asked for (with --seam keep --orient keep: the paper's scheme "
        "exactly)"},
       {"rerepresent",

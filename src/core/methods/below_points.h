@@ -53,7 +53,8 @@ bool holds_below_points(const Frame& fr, const FitOptions& o, int nu, int nv, bo
 /// interpolation (`forced`, or t_forces_interpolation()), fit_below_points()'s surface
 /// replaces it (true); otherwise r's stop reason says which of the two kept it. With
 /// `rows_tell` false the rows' need alone is not taken as T forcing interpolation (the
-/// geometric rule was searched below a cap only, and its surfaces are no curves along rows).
+/// geometric rule was searched below a cap only, and its surfaces are no curves along rows):
+/// the points against their neighbours' quadric are (neighbours_force_interpolation()).
 bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, FitResult& r,
                           bool rows_tell = true);
 

@@ -6,6 +6,7 @@
 #include "below_points.h"
 #include "fit_frame.h"
 #include "fit_monitor.h"
+#include "neighbour_noise.h"
 #include "rows_alone.h"
 #include "sfit/fold_check.h"
 
@@ -30,8 +31,15 @@ bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, Fit
                     "the points)");
     return false;
   }
+  // Where the rows tell (each row's curve is the surface at its v), what they need alone;
+  // where they do not (the geometric rule, searched below a cap because every row needs all
+  // its points, gives each point its own v), the points against their neighbours' quadric: no
+  // parameter rule enters it.
   std::string rows_need;
-  if (forced || (rows_tell && t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need))) {
+  const bool claim =
+      forced || (rows_tell ? t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need)
+                           : neighbours_force_interpolation(fr.centred, o, fr.roundoff, rows_need));
+  if (claim) {
     if (above) {
       r.report.stop_reason +=
           "; more control points than data points: T forces interpolation, "

@@ -132,26 +132,32 @@ FitResult SurfaceFitter::fit_rule(const Rows& rows, Parametrization requested) {
   }
   across_.reset();
   valid_ = false;  // update_aligned() refits in full
-  if (!best && o_.degree_v > 1 && !degree_lowered_) {
-    // No rule across the rows avoided the fold: one degree lower across them. A cubic across
-    // unevenly spaced rows overshoots between them (the ragged 3.4 MW blade dips 4.2 cm below
-    // its root section at 9 x 9 rows and control points); a quadratic there does not. The
-    // report's degree says so, and the CLI; --no-fold-guard keeps the degree asked for.
-    FitOptions lower = o_;
-    --lower.degree_v;
-    SurfaceFitter f(lower);
-    f.degree_lowered_ = true;  // one step down, no further (each step is a whole fit)
-    f.keep_state_ = false;     // its fit is returned, never updated
-    f.row_seam_offsets_ = row_seam_offsets_;
-    f.given_ = given_;  // the same rows: the same centring
-    try {
-      FitResult c = f.fit_rule(rows, requested);
-      if (c.report.within_tolerance && !folds(c) && stays_near_the_data(c.surface, box_)) {
-        c.report.seconds = now() - t0;
-        return c;
+  if (!best && !degree_lowered_) {
+    // No rule across the rows avoided the fold: lower degrees across them, one step at a time
+    // down to 1. A cubic across unevenly spaced rows overshoots between them (the ragged 3.4 MW
+    // blade dips 4.2 cm below its root section at 9 x 9 rows and control points); a quadratic
+    // there does not. Where the columns interpolate rows that each cover a different part of
+    // the surface (rows cut by a hole, noise beyond T: every column passes through every row),
+    // a quadratic still folds and only straight stretches between the rows do not (a noisy
+    // range image with a hole, at T a ninth of its noise). The report's degree says so, and
+    // the CLI; --no-fold-guard keeps the degree asked for.
+    for (int degree = o_.degree_v - 1; degree >= 1; --degree) {
+      FitOptions lower = o_;
+      lower.degree_v = degree;
+      SurfaceFitter f(lower);
+      f.degree_lowered_ = true;  // this loop lowers it further (each step is a whole fit)
+      f.keep_state_ = false;     // its fit is returned, never updated
+      f.row_seam_offsets_ = row_seam_offsets_;
+      f.given_ = given_;  // the same rows: the same centring
+      try {
+        FitResult c = f.fit_rule(rows, requested);
+        if (c.report.within_tolerance && !folds(c) && stays_near_the_data(c.surface, box_)) {
+          c.report.seconds = now() - t0;
+          return c;
+        }
+      } catch (const Error& e) {
+        if (e.code() != ErrorCode::kToleranceNotMet) throw;
       }
-    } catch (const Error& e) {
-      if (e.code() != ErrorCode::kToleranceNotMet) throw;
     }
   }
   if (!best) {

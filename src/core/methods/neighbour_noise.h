@@ -1,0 +1,36 @@
+// How far the points stray from the smooth surface through their neighbours (docs/method.md
+// 7.12): a measure of noise that no parameter rule enters, for the report's claim that T forces
+// interpolation where the rows alone cannot tell (a rule that gives each point its own v is no
+// curve along a row). Private to the surface method.
+#pragma once
+
+#include <string>
+
+#include "sfit/options.h"
+#include "sfit/rows.h"
+
+namespace sfit::detail {
+
+/// Points predicted from their neighbours.
+struct NeighbourNoise {
+  long points = 0;     // points predicted (a sample spread over the rows)
+  long beyond = 0;     // of them, those farther than T from their neighbours' quadric
+  double median = 0;   // the median of |miss| / T along the quadric's normal
+};
+
+/// For up to 1024 points spread over the rows: the quadric h(s, t) fitted by least squares to
+/// its neighbours (up to 6 in its own row and 5 in each of the two rows either side, nearest in
+/// space, never the point itself), in the frame of their principal axes (h along the normal);
+/// the point's distance from it along the normal, over what T allows along that normal
+/// (sum over the axes of |n_a| T_a; an axis with T = 0 at `roundoff`). Points whose neighbours
+/// lie nearly on a line, or are too few for a quadric, are left out.
+NeighbourNoise neighbour_noise(const Rows& centred, const FitOptions& o, double roundoff);
+
+/// Whether the points' own scatter forces (near) interpolation at T whatever the parameters:
+/// the median point of neighbour_noise() is farther than T from its neighbours' quadric (a
+/// smooth surface through the neighbours misses most points by more than T, so any surface
+/// within T must follow the points one by one). `why` gets the numbers.
+bool neighbours_force_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
+                                    std::string& why);
+
+}  // namespace sfit::detail
