@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "raster.h"
 #include "sfit/error.h"
@@ -21,14 +20,6 @@ const Vector3f kBand(0.99f, 0.84f, 0.60f), kCurve(0.10f, 0.25f, 0.70f),
     kPolygon(0.62f, 0.62f, 0.62f), kPoint(0.08f, 0.08f, 0.08f);
 const Vector3f kAxisColour[3] = {
     {0.85f, 0.20f, 0.15f}, {0.20f, 0.60f, 0.20f}, {0.15f, 0.30f, 0.85f}};
-
-std::string fmt_g(double x, int digits = 3) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-  std::string s = buf;
-  if (!s.empty() && s[0] == '-') s = "\xE2\x88\x92" + s.substr(1);
-  return s;
-}
 
 struct RowData {
   std::span<const Point> points;
@@ -203,7 +194,8 @@ RowPicture render_row(std::span<const Point> points, const CurveFit& fit, const 
       const int ix0 = x1 - iw - 4, iy0 = y1 - ih - 4;
       blit(img, draw_projection(d, iw, ih, p.axis_a, p.axis_b, iox, ioy, is, SS), ix0, iy0);
       frame(img, ix0, iy0, ix0 + iw, iy0 + ih, {90, 90, 90});
-      detail::draw_text(img, ix0 + 4, iy0 + lh, "\xC3\x97" + fmt_g(is / p.scale, 2), kInk);
+      detail::draw_text(img, ix0 + 4, iy0 + lh, "\xC3\x97" + detail::format_g(is / p.scale, 2),
+                        kInk);
     }
   }
 
@@ -248,11 +240,11 @@ RowPicture render_row(std::span<const Point> points, const CurveFit& fit, const 
     };
     ytick(0, "0");
     if (zero_bound) {
-      ytick(1, fmt_g(abs_scale, 2));
-      ytick(-1, fmt_g(-abs_scale, 2));
+      ytick(1, detail::format_g(abs_scale, 2));
+      ytick(-1, detail::format_g(-abs_scale, 2));
     } else {
       ytick(1, "+1");
-      ytick(-1, fmt_g(-1));
+      ytick(-1, detail::format_g(-1));
     }
     detail::draw_text(img, gx0, gy1 + lh + 4, "point 0", kInk);
     detail::draw_text(img, gx1, gy1 + lh + 4, "point " + std::to_string(n - 1), kInk,

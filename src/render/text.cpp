@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <span>
 
 namespace sfit::render::detail {
@@ -91,6 +92,14 @@ int draw_text(Image& img, int x, int baseline, std::string_view s, Rgb colour, W
     x += static_cast<int>(g.advance);
   }
   return x;
+}
+
+std::string format_g(double x, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  std::string s = buf;
+  if (!s.empty() && s[0] == '-') s = "\xE2\x88\x92" + s.substr(1);  // U+2212 minus
+  return s;
 }
 
 }  // namespace sfit::render::detail

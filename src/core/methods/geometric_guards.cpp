@@ -1,7 +1,8 @@
 // The geometric rule's checks on a surface and its parameters (geometric_search.h): which knot
 // spans hold data, whether the surface stays near the data's box there and calm elsewhere, its
-// fold across, and the parameters as fractions of the domain. Shared by the rule's search and
-// the fallback below the points.
+// fold across, the three checks a surface of the rule holds with (judge_with_guards()), and the
+// parameters as fractions of the domain. Shared by the rule's search and the fallback below the
+// points.
 #include <algorithm>
 #include <cmath>
 
@@ -79,6 +80,19 @@ double geometric_fold(const Surface& s) {
   const double e = s.v_end();
   for (int k = 0; k < n; ++k) grid[k] = s.periodic_v ? e * k / n : e * k / (n - 1);
   return fold_measure(s, grid);
+}
+
+GuardedVerdict judge_with_guards(const Frame& fr, const Surface& s, std::span<const double> u,
+                                 std::span<const double> v, DeviationCheck* out,
+                                 const Rows* sample) {
+  GuardedVerdict g{fr.judge(s, u, v, out, sample, false)};
+  if (g.verdict.holds && !stays_near_where_covered(s, u, v, fr.centred_box))
+    g.verdict.holds = false;
+  if (g.verdict.holds && geometric_fold(s) > kFoldRelative * fr.box.diagonal()) {
+    g.verdict.holds = false;
+    g.folded = true;
+  }
+  return g;
 }
 
 }  // namespace sfit::detail

@@ -8,7 +8,6 @@
 
 #include "fit_frame.h"
 #include "minimax.h"
-#include "sfit/fold_check.h"
 
 namespace sfit::detail {
 
@@ -46,10 +45,7 @@ std::optional<GeometricFit> geometric_minimax(const Frame& fr, const FitOptions&
       const bool by_l2 = t.holds;  // on every point (the search may have judged a sample)
       if (!by_l2) {
         if (!minimax_refine_points(fr.centred, u, v, o.tolerance, t.s)) continue;
-        if (!fr.judge(t.s, u, v, nullptr, nullptr, false).holds ||
-            !stays_near_where_covered(t.s, u, v, fr.centred_box) ||
-            geometric_fold(t.s) > kFoldRelative * fr.box.diagonal())
-          continue;
+        if (!judge_with_guards(fr, t.s, u, v).verdict.holds) continue;
       }
       GeometricFit out;
       out.surface = std::move(t.s);

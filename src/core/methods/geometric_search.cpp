@@ -13,7 +13,6 @@
 #include "geometric_reweight.h"
 #include "pair_search.h"
 #include "scattered_lsq.h"
-#include "sfit/fold_check.h"
 
 namespace sfit::detail {
 
@@ -60,12 +59,9 @@ struct Attempt {
   double smoothing = 0;
 };
 
-bool folds(const Surface& s, const Frame& fr) {
-  return geometric_fold(s) > kFoldRelative * fr.box.diagonal();
-}
-
-// The problem's surface at (nu, nv), judged on its rows (the frame's, or a sample of them):
-// lowered smoothing where T was missed by a little; a fold fails the pair.
+// The problem's surface at (nu, nv), judged on its rows (the frame's, or a sample of them)
+// with the rule's guards (judge_with_guards()): lowered smoothing where T was missed by a
+// little; a fold fails the pair.
 // From `start` the weight is lowered by kSmoothingLower while T is missed: always above
 // kSmoothing (a weight asked for), then once where T was missed by at most kSmoothingReach.
 // `reweighted`: where T is still missed by at most kReweightReach, the reweighted fit at the
@@ -94,14 +90,11 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
   for (double w = start; w >= kSmoothing * kSmoothingLower; w *= kSmoothingLower) {
     Surface s;
     if (!scattered_solve(sp.spec(), nu, nv, band, rhs, w, s)) return a;
-    PairVerdict verdict = fr.judge(s, u, v, out, sample, false);
-    if (verdict.holds && !stays_near_where_covered(s, u, v, fr.centred_box)) verdict.holds = false;
-    a = {verdict, std::move(s), w};
-    if (verdict.holds) {
-      if (folds(a.s, fr)) a.verdict.holds = false;
-      return a;
-    }
-    if (verdict.ratio > kSmoothingReach && w <= kSmoothing) break;
+    const GuardedVerdict g = judge_with_guards(fr, s, u, v, out, sample);
+    a = {g.verdict, std::move(s), w};
+    // Within T and near the data: no lower weight is tried, folded or not.
+    if (g.verdict.holds || g.folded) return a;
+    if (g.verdict.ratio > kSmoothingReach && w <= kSmoothing) break;
   }
   if (reweighted && fr.centred.total_points() >= kReweightPoints && !a.verdict.holds &&
       a.verdict.ratio <= kReweightReach && !a.s.control.empty()) {
@@ -109,9 +102,9 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
     for (int i = 0; i < 3; ++i)
       semi[i] = fr.tolerance[i] + (fr.tolerance[i] == 0 ? fr.roundoff : 0.0);
     const auto holds = [&](const Surface& s) {
-      return fr.judge(s, u, v, nullptr, sample, false).holds &&
-             stays_near_where_covered(s, u, v, fr.centred_box) && !folds(s, fr);
+      return judge_with_guards(fr, s, u, v, nullptr, sample).verdict.holds;
     };
+    // Held with the guards (`holds`): judged again for the verdict's exact ratio and `out`.
     if (reweight(sp, nu, nv, a.smoothing, semi, a.s, holds))
       a.verdict = fr.judge(a.s, u, v, out, sample, false);
   }

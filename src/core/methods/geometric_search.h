@@ -115,4 +115,21 @@ void to_fractions(const Surface& s, const std::vector<double>& u, const std::vec
 /// The fold of a surface over evenly spaced columns (fold_measure()).
 double geometric_fold(const Surface& s);
 
+/// A verdict of judge_with_guards(): `verdict` is the frame's judge's (its ratio: the worst
+/// |S - D| / T), holding only where the guards passed too; `folded`: every point within T and
+/// near the data, but the surface folds.
+struct GuardedVerdict {
+  PairVerdict verdict;
+  bool folded = false;
+};
+
+/// Whether a surface of the rule holds with its guards, cheapest first and each only where
+/// the one before passed: every point within T (Frame::judge() with its own guards off, `out`
+/// and `sample` as there), the surface near the data where the data is
+/// (stays_near_where_covered()), and no fold (geometric_fold() at most kFoldRelative of the
+/// box's diagonal). The one check of the rule's search, its reweighting and its minimax.
+GuardedVerdict judge_with_guards(const Frame& fr, const Surface& s, std::span<const double> u,
+                                 std::span<const double> v, DeviationCheck* out = nullptr,
+                                 const Rows* sample = nullptr);
+
 }  // namespace sfit::detail
