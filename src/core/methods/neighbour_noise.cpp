@@ -93,6 +93,7 @@ NeighbourNoise neighbour_noise(const Rows& centred, const FitOptions& o, double 
       if (dr == 0 || r < 0 || r == row) continue;
       const auto other = centred[r];
       const long m = static_cast<long>(other.size());
+      if (m == 0) continue;
       long near = 0;
       double best = (other[0] - q).squaredNorm();
       for (long k = 1; k < m; ++k)
