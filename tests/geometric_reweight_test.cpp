@@ -162,6 +162,47 @@ TEST(GeometricReweight, SearchHoldsWithFewerControlPoints) {
   EXPECT_LE(detail::geometric_fold(g->surface), kFoldRelative * fr.box.diagonal());
 }
 
+// The plain search's probe (search_geometric_counted()'s `reweight_held`): set on the range
+// image above, where the reweighted search holds with fewer; not set where every point carries
+// noise of 1.3 T (alternating in sign: no surface comes within T), and there the reweighted
+// search solves the same pairs as the plain one and ends where it does, which is why
+// search_geometric() does not run it there.
+TEST(GeometricReweight, TheProbeSaysWhereTheReweightedSearchCanDiffer) {
+  const Rows rows = range_image_with_hole(100, 120);
+  FitOptions o;
+  o.tolerance = relative_tolerance(rows, 1e-3);
+  long tried = 0, near = LONG_MAX;
+  bool held = false;
+  {
+    const detail::Frame fr(rows, o);
+    detail::search_geometric_counted(fr, o, LONG_MAX, detail::kCorrectionRounds, tried,
+                                     detail::BasePlane::kBest, 0, false, &near, &held);
+    EXPECT_TRUE(held);
+  }
+  Rows noisy;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto row = rows[j];
+    for (std::size_t k = 0; k < row.size(); ++k)
+      noisy.push_point(row[k] + Point(0, 0, ((j + k) % 2 ? 1.3 : -1.3) * o.tolerance[2]));
+    noisy.end_row();
+  }
+  ASSERT_GE(noisy.total_points(), detail::kReweightPoints);
+  const detail::Frame fr(noisy, o);
+  long plain_tried = 0, reweighted_tried = 0;
+  near = LONG_MAX;
+  held = false;
+  const auto plain =
+      detail::search_geometric_counted(fr, o, 400, detail::kCorrectionRounds, plain_tried,
+                                       detail::BasePlane::kBest, 0, false, &near, &held);
+  const auto reweighted = detail::search_geometric_counted(
+      fr, o, 400, detail::kCorrectionRounds, reweighted_tried, detail::BasePlane::kBest, 0, true);
+  EXPECT_LE(near, 400);  // near misses within kReweightReach, where the probe reweighted
+  EXPECT_FALSE(held);
+  EXPECT_EQ(plain.has_value(), reweighted.has_value());
+  EXPECT_EQ(plain_tried, reweighted_tried);
+  EXPECT_GT(plain_tried, 0);
+}
+
 // Below kReweightPoints the search is the plain one's (the same pair).
 TEST(GeometricReweight, SmallDataKeepTheLeastSquaresSearch) {
   const Rows rows = range_image_with_hole();

@@ -11,6 +11,7 @@
 #include "geometric_minimax.h"
 #include "geometric_params.h"
 #include "geometric_reweight.h"
+#include "geometric_sample.h"
 #include "pair_search.h"
 #include "scattered_lsq.h"
 
@@ -18,40 +19,9 @@ namespace sfit::detail {
 
 namespace {
 
-// Above this many points the pairs are searched on a sample of the rows' points (every
-// step-th of each row, and its last), then verified on all.
-constexpr std::size_t kSamplePoints = 20000;
 // Pairs with more unknowns than this, or whose factorisation costs more flops, are not tried.
 constexpr long kMaxUnknowns = kGeometricMaxUnknowns;
 constexpr double kMaxCost = 4e7;
-
-struct Sample {
-  Rows rows;
-  std::vector<std::size_t> index;  // each sample point's index in the full rows
-};
-
-Sample take_sample(const Rows& rows, std::size_t step) {
-  Sample s;
-  const auto& off = rows.offsets();
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    const auto row = rows[j];
-    for (std::size_t k = 0; k < row.size(); ++k) {
-      if (k % step != 0 && k + 1 != row.size()) continue;
-      s.rows.push_point(row[k]);
-      s.index.push_back(off[j] + k);
-      if (rows.weighted()) s.rows.push_weight(rows.weights()[off[j] + k]);
-    }
-    s.rows.end_row();
-  }
-  return s;
-}
-
-template <class T>
-std::vector<T> pick(const std::vector<T>& x, const std::vector<std::size_t>& index) {
-  std::vector<T> out(index.size());
-  for (std::size_t k = 0; k < index.size(); ++k) out[k] = x[index[k]];
-  return out;
-}
 
 struct Attempt {
   PairVerdict verdict{false, HUGE_VAL};
@@ -65,9 +35,12 @@ struct Attempt {
 // From `start` the weight is lowered by kSmoothingLower while T is missed: always above
 // kSmoothing (a weight asked for), then once where T was missed by at most kSmoothingReach.
 // `reweighted`: where T is still missed by at most kReweightReach, the reweighted fit at the
-// last weight (geometric_reweight.h).
+// last weight (geometric_reweight.h). `probe` (not reweighted, while *probe is false): there
+// the reweighted fit is tried on a copy, the pair's result left as least squares made it, and
+// *probe set where it held (search_geometric(): whether the reweighted search can differ).
 Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, int nu, int nv,
-                bool reweighted, DeviationCheck* out = nullptr, double start = kSmoothing) {
+                bool reweighted, DeviationCheck* out = nullptr, double start = kSmoothing,
+                bool* probe = nullptr) {
   Attempt a;
   const std::vector<double> u = sp.u_at(nu), v = sp.v_at(nv);
   if (nu < sp.min_u() || nv < sp.min_v()) return a;
@@ -96,7 +69,8 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
     if (g.verdict.holds || g.folded) return a;
     if (g.verdict.ratio > kSmoothingReach && w <= kSmoothing) break;
   }
-  if (reweighted && fr.centred.total_points() >= kReweightPoints && !a.verdict.holds &&
+  const bool probing = !reweighted && probe && !*probe;
+  if ((reweighted || probing) && fr.centred.total_points() >= kReweightPoints && !a.verdict.holds &&
       a.verdict.ratio <= kReweightReach && !a.s.control.empty()) {
     Point semi;
     for (int i = 0; i < 3; ++i)
@@ -105,8 +79,12 @@ Attempt attempt(const ScatteredProblem& sp, const Frame& fr, const Rows* sample,
       return judge_with_guards(fr, s, u, v, nullptr, sample).verdict.holds;
     };
     // Held with the guards (`holds`): judged again for the verdict's exact ratio and `out`.
-    if (reweight(sp, nu, nv, a.smoothing, semi, a.s, holds))
+    if (probing) {
+      Surface copy = a.s;
+      *probe = reweight(sp, nu, nv, a.smoothing, semi, copy, holds);
+    } else if (reweight(sp, nu, nv, a.smoothing, semi, a.s, holds)) {
       a.verdict = fr.judge(a.s, u, v, out, sample, false);
+    }
   }
   return a;
 }
@@ -126,13 +104,15 @@ void keep(Kept& kept, int nu, int nv, Attempt a) {
 }
 
 // `near`: lowered to the control points of each pair that misses T by at most kReweightReach.
+// `probe`: attempt()'s.
 PairOracle oracle_for(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, bool report,
-                      bool reweighted, Kept* kept = nullptr, long* near = nullptr) {
-  return PairOracle([&sp, &fr, sample, report, reweighted, kept, near](int nu, int nv) {
+                      bool reweighted, Kept* kept = nullptr, long* near = nullptr,
+                      bool* probe = nullptr) {
+  return PairOracle([&sp, &fr, sample, report, reweighted, kept, near, probe](int nu, int nv) {
     if (static_cast<long>(nu) * nv > kMaxUnknowns || sp.cost(nu, nv) > kMaxCost ||
         static_cast<std::size_t>(nu) * nv > sp.rows().total_points())
       return PairVerdict{false, HUGE_VAL};
-    Attempt a = attempt(sp, fr, sample, nu, nv, reweighted);
+    Attempt a = attempt(sp, fr, sample, nu, nv, reweighted, nullptr, kSmoothing, probe);
     const PairVerdict v = a.verdict;
     if (kept && v.holds) keep(*kept, nu, nv, std::move(a));
     if (near && !v.holds && v.ratio <= kReweightReach)
@@ -161,8 +141,11 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
                                              int corrections, long* pairs, long linf_bound) {
   long tried = 0;
   long near = LONG_MAX;  // the fewest control points of a pair the plain searches nearly held
+  // Whether the reweighted fit held at a near miss of the plain search over the best plane
+  // (tried there on a copy, search_geometric_counted()'s `reweight_held`; see below).
+  bool reweight_held = false;
   std::optional<GeometricFit> g = search_geometric_counted(
-      fr, o, bound, corrections, tried, BasePlane::kBest, linf_bound, false, &near);
+      fr, o, bound, corrections, tried, BasePlane::kBest, linf_bound, false, &near, &reweight_held);
   // The coordinate plane's parameters, below the count found (geometric_params.h): only
   // where the best plane's found one. Where it found none below the bound the coordinate
   // plane's search was as long and found none either on every example set and generated
@@ -181,10 +164,17 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   // what the plain search found: a separate search, not the plain one's oracle, because a
   // smaller pair held early can end the correction by projection at a larger count than the
   // plain search reaches (a closed tube of uneven sections: 16 x 7 against 12 x 4).
-  // Only where the plain searches missed T by at most kReweightReach below their count.
+  // Only where the plain searches missed T by at most kReweightReach below their count, and
+  // only where the reweighted fit held at one of the best plane's near misses: the reweighted
+  // search solves the same pairs as the plain one over the best plane (the same problems,
+  // bound and order) and differs from it only from the first pair where a reweighted fit holds;
+  // the plain search tries the reweighting at its near misses on a copy until one holds, so
+  // where none did the reweighted search would retrace the plain one and end at its count
+  // (topobathy at 1e-3: no reweighted fit held at any of its 16 near misses, 169 ... 4920
+  // control points, and the search cost 1.6x the fit's instructions for the same 114 x 60).
   const long found = g ? static_cast<long>(g->surface.count_u) * g->surface.count_v : bound;
   std::optional<GeometricFit> r;
-  if (near < found && fr.centred.total_points() >= kReweightPoints)
+  if (near < found && reweight_held && fr.centred.total_points() >= kReweightPoints)
     r = search_geometric_counted(fr, o, bound, corrections, tried, BasePlane::kBest, 0, true);
   if (r && static_cast<long>(r->surface.count_u) * r->surface.count_v < found) {
     r->stop += "; least squares reweighted where it missed T by a little";
@@ -198,7 +188,8 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
 std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
                                                      long bound, int corrections, long& tried,
                                                      BasePlane plane, long linf_bound,
-                                                     bool reweighted, long* near_miss) {
+                                                     bool reweighted, long* near_miss,
+                                                     bool* reweight_held) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v, plane);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
@@ -218,7 +209,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   auto sp = std::make_unique<ScatteredProblem>(srows, spec, fu, fv);
   PairRange range = range_for(*sp, srows);
   Kept kept_sp;  // of the problem *sp
-  PairOracle first = oracle_for(*sp, fr, sptr, !sample, reweighted, &kept_sp, near_miss);
+  PairOracle first =
+      oracle_for(*sp, fr, sptr, !sample, reweighted, &kept_sp, near_miss, reweight_held);
   // A first bound from the diagonal (k, k), k growing by 1.5: a few small solves, after which
   // the pair search never tries a pair with more control points than it.
   long start = bound;
@@ -254,8 +246,9 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   int rounds = 0;
   for (int round = 0; round < corrections; ++round) {
     const auto held = kept_sp.find({nu, nv});
-    const Attempt at =
-        held != kept_sp.end() ? held->second : attempt(*sp, fr, sptr, nu, nv, reweighted);
+    const Attempt at = held != kept_sp.end() ? held->second
+                                             : attempt(*sp, fr, sptr, nu, nv, reweighted, nullptr,
+                                                       kSmoothing, reweight_held);
     if (!at.verdict.holds) break;
     std::vector<double> u = sp->u_at(nu), v = sp->v_at(nv);
     project_parameters(at.s, srows, u, v, kNewtonSteps, fr.threads);
@@ -263,7 +256,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
     to_fractions(at.s, u, v, nfu, nfv);
     auto next = std::make_unique<ScatteredProblem>(srows, spec, nfu, nfv);
     Kept kept_next;
-    PairOracle o2 = oracle_for(*next, fr, sptr, !sample, reweighted, &kept_next, near_miss);
+    PairOracle o2 =
+        oracle_for(*next, fr, sptr, !sample, reweighted, &kept_next, near_miss, reweight_held);
     if (!o2(nu, nv).holds) {
       tried += o2.tried();
       break;
@@ -283,34 +277,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   out.corrections = rounds;
   std::vector<double> full_u = f->u, full_v = f->v;
   if (sample && rounds > 0) {
-    // The sample's corrections carried to every point: linear along each row between the
-    // sample points that bracket it.
-    const auto& off = fr.centred.offsets();
-    std::size_t s0 = 0;
-    for (std::size_t j = 0; j < fr.centred.size(); ++j) {
-      const std::size_t begin = s0;
-      while (s0 < sample->index.size() && sample->index[s0] < off[j + 1]) ++s0;
-      for (std::size_t s = begin; s < s0; ++s) {
-        const std::size_t k0 = sample->index[s];
-        const double du0 = fu[s] - fu0[s], dv0 = fv[s] - fv0[s];
-        const bool has_next = s + 1 < s0;
-        const std::size_t k1 = has_next ? sample->index[s + 1] : k0 + 1;
-        const double du1 = has_next ? fu[s + 1] - fu0[s + 1] : du0,
-                     dv1 = has_next ? fv[s + 1] - fv0[s + 1] : dv0;
-        for (std::size_t k = k0; k < k1 && k < off[j + 1]; ++k) {
-          const double t = static_cast<double>(k - k0) / static_cast<double>(k1 - k0);
-          double u = full_u[k] + (1 - t) * du0 + t * du1;
-          if (o.closed_u) {
-            u -= std::floor(u);
-            if (u >= 1) u = 0;
-          } else {
-            u = std::clamp(u, 0.0, 1.0);
-          }
-          full_u[k] = u;
-          full_v[k] = std::clamp(full_v[k] + (1 - t) * dv0 + t * dv1, 0.0, 1.0);
-        }
-      }
-    }
+    carry_sample_corrections(fr.centred, sample->index, fu, fv, fu0, fv0, o.closed_u, full_u,
+                             full_v);
   } else if (!sample) {
     full_u = fu;
     full_v = fv;
@@ -318,7 +286,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // Fine: verify on every point, raise until it holds, descend while one fewer holds.
   const ScatteredProblem full(fr.centred, spec, std::move(full_u), std::move(full_v));
   Kept kept;
-  PairOracle all = oracle_for(full, fr, nullptr, true, reweighted, &kept, near_miss);
+  PairOracle all = oracle_for(full, fr, nullptr, true, reweighted, &kept, near_miss, reweight_held);
   if (sample) {
     bool holds = all(nu, nv).holds;
     for (int k = 1; !holds && k <= 8; ++k) {
@@ -345,8 +313,9 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // surface is this pair's.
   if (!sample) kept = std::move(kept_sp);
   auto it = kept.find({nu, nv});
-  const Attempt at =
-      it != kept.end() ? std::move(it->second) : attempt(full, fr, nullptr, nu, nv, reweighted);
+  const Attempt at = it != kept.end() ? std::move(it->second)
+                                      : attempt(full, fr, nullptr, nu, nv, reweighted, nullptr,
+                                                kSmoothing, reweight_held);
   if (!at.verdict.holds) return std::nullopt;
   out.surface = at.s;
   out.u = full.u_at(nu);

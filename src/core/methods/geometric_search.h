@@ -60,8 +60,10 @@ inline constexpr long kGeometricMaxUnknowns = 20000;
 /// minute: uneven_rows of bench/scan_cases.py at 1e-3), else its bound.
 /// Then, over the best plane, below the count found (or `bound`), the search with the
 /// reweighted fit at near misses (search_geometric_counted(), `reweighted`; no minimax), where the
-/// plain searches missed by at most kReweightReach at fewer control points than they found; kept
-/// where it has fewer.
+/// plain searches missed by at most kReweightReach at fewer control points than they found and
+/// the reweighted fit held at one of the best plane's near misses (tried there on a copy: where
+/// none held, the reweighted search would solve the plain one's pairs and end at its count);
+/// kept where it has fewer.
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
                                              int corrections = kCorrectionRounds,
                                              long* pairs = nullptr, long linf_bound = LONG_MAX);
@@ -70,12 +72,13 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
 /// fitted again by reweighted least squares (geometric_reweight.h) and holds where that does.
 /// `near_miss`: lowered to the control points of every pair solved that missed T (or its
 /// guards) by at most kReweightReach.
-std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitOptions& o,
-                                                     long bound, int corrections, long& tried,
-                                                     BasePlane plane = BasePlane::kBest,
-                                                     long linf_bound = LONG_MAX,
-                                                     bool reweighted = false,
-                                                     long* near_miss = nullptr);
+/// `reweight_held` (not `reweighted`): at each pair the reweighted search would reweight, the
+/// reweighted fit is tried on a copy (the search itself stays least squares) until one holds,
+/// which sets *reweight_held: up to there the reweighted search solves the same pairs.
+std::optional<GeometricFit> search_geometric_counted(
+    const Frame& fr, const FitOptions& o, long bound, int corrections, long& tried,
+    BasePlane plane = BasePlane::kBest, long linf_bound = LONG_MAX, bool reweighted = false,
+    long* near_miss = nullptr, bool* reweight_held = nullptr);
 
 /// The rule's surface at exactly (nu, nv) (FitOptions::counts), holding or not; nullopt where
 /// the rule has no base surface for the rows. The smoothness weight starts at `smoothing`
