@@ -15,8 +15,8 @@
 namespace sfit {
 namespace {
 
-using test::Uniform;
 using test::size_of;
+using test::Uniform;
 
 double saddle(double x, double y) {
   return 4 * ((x - 0.15) * (x - 0.15) - (y - 0.11) * (y - 0.11)) +

@@ -129,7 +129,8 @@ Frame::Frame(const Rows& rows, const FitOptions& o, int t, const BoundingBox& b)
       centre(box_centre(b)),
       roundoff(kRoundoffRelative * b.diagonal()),
       centred(*own_),
-      tolerance(o.tolerance) {}
+      tolerance(o.tolerance),
+      closed_v(o.closed_v) {}
 
 Frame::Frame(const Centring& c, const FitOptions& o)
     : threads(c.threads),
@@ -138,7 +139,13 @@ Frame::Frame(const Centring& c, const FitOptions& o)
       centre(c.centre),
       roundoff(c.roundoff),
       centred(c.centred),
-      tolerance(o.tolerance) {}
+      tolerance(o.tolerance),
+      closed_v(o.closed_v) {}
+
+const RowPairs& Frame::row_pairs() const {
+  std::call_once(pairs_once_, [this] { pairs_ = detail::row_pairs(centred, closed_v); });
+  return pairs_;
+}
 
 PairVerdict Frame::judge(const Surface& s, std::span<const double> u, std::span<const double> v,
                          DeviationCheck* out, const Rows* sample, bool guards) const {

@@ -5,10 +5,12 @@
 #include <compare>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <vector>
 
+#include "between_rows.h"
 #include "deviation.h"
 #include "fit_driver.h"
 #include "pair_search.h"
@@ -37,6 +39,7 @@ struct Frame {
   double roundoff = 0;
   const Rows& centred;
   Point tolerance = Point::Zero();
+  bool closed_v = false;
 
   Frame(const Rows& rows, const FitOptions& o);
   /// The same frame from the driver's centring of the rows (fit_driver.h): no second pass,
@@ -60,6 +63,14 @@ struct Frame {
   PairVerdict judge(const Surface& s, std::span<const double> u, std::span<const double> v,
                     DeviationCheck* out = nullptr, const Rows* sample = nullptr,
                     bool guards = true) const;
+
+  /// Neighbouring points of consecutive centred rows (between_rows.h), made at the first call
+  /// (safe from any thread).
+  const RowPairs& row_pairs() const;
+
+ private:
+  mutable std::once_flag pairs_once_;
+  mutable RowPairs pairs_;
 };
 
 /// The parameter rules the search tries for FitOptions::parametrization (all five for kAuto

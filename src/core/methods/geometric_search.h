@@ -104,9 +104,9 @@ std::vector<char> covered_spans(const Surface& s, std::span<const double> u,
 
 /// The rule's guard (in place of fit_frame.h's): every control point within the data's box
 /// grown by its diagonal; the surface, sampled 4 times per span each way, within the box
-/// grown by 1/10 of the diagonal in the spans that hold data, and by 1/2 (calm) in the spans
-/// without (clipped corners, holes, outside an outline), where the smoothness term alone
-/// decides it.
+/// grown by 1/10 of the diagonal in the spans that hold data or lie between two that do in
+/// their column or row (holes, gaps between rows), and by 1/2 (calm) in the spans outside
+/// (clipped corners, outside an outline), where the smoothness term alone decides it.
 bool stays_near_where_covered(const Surface& s, std::span<const double> u,
                               std::span<const double> v, const BoundingBox& box);
 
@@ -129,8 +129,10 @@ struct GuardedVerdict {
 /// Whether a surface of the rule holds with its guards, cheapest first and each only where
 /// the one before passed: every point within T (Frame::judge() with its own guards off, `out`
 /// and `sample` as there), the surface near the data where the data is
-/// (stays_near_where_covered()), and no fold (geometric_fold() at most kFoldRelative of the
-/// box's diagonal). The one check of the rule's search, its reweighting and its minimax.
+/// (stays_near_where_covered()), no fold (geometric_fold() at most kFoldRelative of the
+/// box's diagonal), and, judged on every point (no `sample`), calm between the rows
+/// (between_rows_ratio() at most kBetweenRowsLimit). The one check of the rule's search, its
+/// reweighting and its minimax.
 GuardedVerdict judge_with_guards(const Frame& fr, const Surface& s, std::span<const double> u,
                                  std::span<const double> v, DeviationCheck* out = nullptr,
                                  const Rows* sample = nullptr);

@@ -13,9 +13,9 @@ namespace sfit::detail {
 
 /// Points predicted from their neighbours.
 struct NeighbourNoise {
-  long points = 0;     // points predicted (a sample spread over the rows)
-  long beyond = 0;     // of them, those farther than T from their neighbours' quadric
-  double median = 0;   // the median of |miss| / T along the quadric's normal
+  long points = 0;    // points predicted (a sample spread over the rows)
+  long beyond = 0;    // of them, those farther than T from their neighbours' quadric
+  double median = 0;  // the median of |miss| / T along the quadric's normal
 };
 
 /// For up to 1024 points spread over the rows: the quadric h(s, t) fitted by least squares to
