@@ -109,8 +109,8 @@ std::vector<OptionSpec> make_table() {
        0,
        {"uniform", "adaptive"},
        "uniform, or adaptive (also fits on knots inserted where the residuals concentrate and "
-       "removed where not needed; kept only when smaller, within T and unfolded; open "
-       "directions)"},
+       "removed where not needed; kept only when smaller, within T and unfolded; along open "
+       "and closed rows, across open rows only)"},
       {"method", "--method", fit, T::kChoice, "surface", 0, 0, method_names, method_help},
       {"norm",
        "--norm",

@@ -17,60 +17,84 @@ constexpr int kMaxRounds = 60;     // insertion rounds per step
 constexpr int kMaxSolves = 48;     // tensor solves of steps 2 and 3 together
 constexpr double kMaxWork = 3e9;   // flops of all tensor solves together (a few seconds at most)
 
-// An open knot vector as breakpoints (0 ... end) and interior multiplicities.
+// A knot vector as breakpoints (0 ... end) and multiplicities: open, one per interior
+// breakpoint b_1 ... b_{m-1}; periodic, one per b_0 ... b_{m-1} (b_m = end is the period,
+// b_0 = 0 a knot like any other, except that it stays: the points keep their u).
 struct Breaks {
   std::vector<double> b;
-  std::vector<int> m;  // one per interior breakpoint
+  std::vector<int> m;
   int degree = 3;
+  bool periodic = false;
   int count() const {
-    int c = degree + 1;
+    int c = periodic ? 0 : degree + 1;
     for (int x : m) c += x;
     return c;
   }
-  KnotVector knots() const { return KnotVector::from_breaks(degree, false, b, m); }
+  KnotVector knots() const { return KnotVector::from_breaks(degree, periodic, b, m); }
   std::size_t span_of(double t) const {
     const auto it = std::upper_bound(b.begin() + 1, b.end() - 1, t);
     return static_cast<std::size_t>(it - b.begin()) - 1;
   }
-  // Inserts t (a new breakpoint, or one more copy of an interior one up to the degree).
+  // The multiplicity of breakpoint k (periodic: the end is b_0); null for an open end.
+  int* mult(std::size_t k) {
+    if (periodic) return &m[k + 1 == b.size() ? 0 : k];
+    return k == 0 || k + 1 == b.size() ? nullptr : &m[k - 1];
+  }
+  // Inserts t (a new breakpoint, or one more copy of an existing one up to the degree).
   bool insert(double t) {
     const double eps = 1e-9 * b.back();
-    if (!(t > eps && t < b.back() - eps)) return false;
+    if (periodic) {
+      if (!(t > -eps && t < b.back() + eps)) return false;
+      t = std::clamp(t, 0.0, b.back());
+    } else if (!(t > eps && t < b.back() - eps)) {
+      return false;
+    }
     const std::size_t s = span_of(t);
     for (std::size_t k : {s, s + 1})
       if (std::abs(b[k] - t) <= eps) {
-        if (k == 0 || k + 1 == b.size() || m[k - 1] >= degree) return false;
-        ++m[k - 1];
+        int* r = mult(k);
+        if (r == nullptr || *r >= degree) return false;
+        ++*r;
         return true;
       }
     b.insert(b.begin() + static_cast<std::ptrdiff_t>(s) + 1, t);
-    m.insert(m.begin() + static_cast<std::ptrdiff_t>(s), 1);
+    m.insert(m.begin() + static_cast<std::ptrdiff_t>(s) + (periodic ? 1 : 0), 1);
     return true;
   }
-  void remove(std::size_t k) {  // one copy of interior breakpoint k
-    if (--m[k - 1] == 0) {
+  // Takes one copy of breakpoint k out (periodic b_0 down to multiplicity 1 only); false
+  // where it cannot.
+  bool remove(std::size_t k) {
+    int* r = mult(k);
+    if (r == nullptr || (periodic && ((k == 0 && *r == 1) || count() <= degree + 1))) return false;
+    if (--*r == 0) {
       b.erase(b.begin() + static_cast<std::ptrdiff_t>(k));
-      m.erase(m.begin() + static_cast<std::ptrdiff_t>(k) - 1);
+      m.erase(m.begin() + static_cast<std::ptrdiff_t>(k) - (periodic ? 0 : 1));
     }
+    return true;
   }
+  // The breakpoints removal may try: interior ones, and b_0 when periodic.
+  std::size_t first_removable() const { return periodic ? 0 : 1; }
 };
 
-Breaks uniform_breaks(int degree, int spans, double end) {
+Breaks uniform_breaks(int degree, int spans, double end, bool periodic = false) {
   Breaks k;
   k.degree = degree;
+  k.periodic = periodic;
   for (int i = 0; i <= spans; ++i) k.b.push_back(end * i / spans);
   k.b.back() = end;
-  k.m.assign(static_cast<std::size_t>(spans - 1), 1);
+  k.m.assign(static_cast<std::size_t>(periodic ? spans : spans - 1), 1);
   return k;
 }
 
-// Adds sum coef[i] x[first + i] = rhs (i < len) to `ls` of n unknowns and width w.
+// Adds sum coef[i] x[first + i] = rhs (i < len) to `ls` of n unknowns and width w (indices
+// mod n when cyclic: `ls` wraps them).
 void add_equation(BandedLeastSquares& ls, int n, int w, std::vector<double>& buf, int first,
-                  const double* coef, int len, const Point& rhs, double weight) {
-  const int start = std::min(first, std::max(0, n - w));
+                  const double* coef, int len, const Point& rhs, double weight,
+                  bool cyclic = false) {
+  const int start = cyclic ? first % n : std::min(first, std::max(0, n - w));
   buf.assign(static_cast<std::size_t>(w), 0.0);
   for (int i = 0; i < len; ++i)
-    if (coef[i] != 0) buf[static_cast<std::size_t>(first - start + i)] = coef[i];
+    if (coef[i] != 0) buf[static_cast<std::size_t>((cyclic ? 0 : first - start) + i)] = coef[i];
   ls.add(start, buf.data(), rhs, weight);
 }
 
@@ -85,6 +109,7 @@ void row_residuals(const Rows& rows, const std::vector<double>& u, const Point& 
                    std::vector<double>& at) {
   const KnotVector k = ku.knots();
   const int p = ku.degree, n = ku.count();
+  const bool per = ku.periodic;
   worst.assign(ku.b.size() - 1, 0.0);
   at.assign(ku.b.size() - 1, 0.0);
   std::vector<double> N(static_cast<std::size_t>(p + 1)), buf;
@@ -93,19 +118,19 @@ void row_residuals(const Rows& rows, const std::vector<double>& u, const Point& 
   for (std::size_t j = 0; j < rows.size(); ++j) {
     const auto row = rows[j];
     const double* uj = u.data() + rows.offsets()[j];
-    BandedLeastSquares ls(n, p + 1, false);
+    BandedLeastSquares ls(n, p + 1, per);
     for (std::size_t i = 0; i < row.size(); ++i) {
-      const int f = eval_basis(k, p, n, false, uj[i], N.data());
+      const int f = eval_basis(k, p, n, per, uj[i], N.data());
       ls.add(f, N.data(), row[i] - centre);
     }
-    for (int i = 0; i + (p >= 2 ? 2 : 1) < n; ++i)
+    for (int i = 0; i + (per ? 0 : p >= 2 ? 2 : 1) < n; ++i)
       add_equation(ls, n, p + 1, buf, i, p >= 2 ? second : first, p >= 2 ? 3 : 2, Point::Zero(),
-                   kRidge);
+                   kRidge, per);
     if (!ls.solve(c)) continue;
     for (std::size_t i = 0; i < row.size(); ++i) {
-      const int f = eval_basis(k, p, n, false, uj[i], N.data());
+      const int f = eval_basis(k, p, n, per, uj[i], N.data());
       Point s = Point::Zero();
-      for (int a = 0; a <= p; ++a) s += N[a] * c[f + a];
+      for (int a = 0; a <= p; ++a) s += N[a] * c[(f + a) % n];
       const double r = ratio(s + centre - row[i], tol);
       const std::size_t sp = ku.span_of(uj[i]);
       if (r > worst[sp]) {
@@ -122,8 +147,11 @@ bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vec
                   const Point& centre, const Breaks& ku, const Breaks& kv, Surface& s) {
   const KnotVector KU = ku.knots(), KV = kv.knots();
   const int p = ku.degree, q = kv.degree, nu = ku.count(), nv = kv.count();
+  // A closed u direction: control point (i, j) is unknown i nv + j, so u's wrap (i mod nu) is
+  // the cyclic band's (mod nu nv), which BandedLeastSquares holds in a dense tail.
+  const bool per = ku.periodic;
   const int n = nu * nv, w = std::min(n, p * nv + q + 1);
-  BandedLeastSquares ls(n, w, false);
+  BandedLeastSquares ls(n, w, per);
   std::vector<double> Nu(static_cast<std::size_t>(p + 1)), Nv(static_cast<std::size_t>(q + 1));
   std::vector<double> coef(static_cast<std::size_t>(p * nv + q + 1)), buf;
   for (std::size_t j = 0; j < rows.size(); ++j) {
@@ -131,31 +159,33 @@ bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vec
     const auto row = rows[j];
     const double* uj = u.data() + rows.offsets()[j];
     for (std::size_t i = 0; i < row.size(); ++i) {
-      const int fu = eval_basis(KU, p, nu, false, uj[i], Nu.data());
+      const int fu = eval_basis(KU, p, nu, per, uj[i], Nu.data());
       std::fill(coef.begin(), coef.end(), 0.0);
       for (int a = 0; a <= p; ++a)
         for (int b = 0; b <= q; ++b) coef[static_cast<std::size_t>(a * nv + b)] = Nu[a] * Nv[b];
-      add_equation(ls, n, w, buf, fu * nv + fv, coef.data(), p * nv + q + 1, row[i] - centre, 1);
+      add_equation(ls, n, w, buf, fu * nv + fv, coef.data(), p * nv + q + 1, row[i] - centre, 1,
+                   per);
     }
   }
-  // Second differences along u (stride nv) and along v (stride 1); first differences at
-  // degree 1.
+  // Second differences along u (stride nv; around the wrap when closed) and along v (stride
+  // 1); first differences at degree 1.
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j) {
       std::fill(coef.begin(), coef.end(), 0.0);
       const int du = p >= 2 ? 2 : 1, dv = q >= 2 ? 2 : 1;
-      if (i + du < nu) {
+      if (per || i + du < nu) {
         coef[0] = 1;
         coef[static_cast<std::size_t>(nv)] = du == 2 ? -2 : -1;
         if (du == 2) coef[static_cast<std::size_t>(2 * nv)] = 1;
-        add_equation(ls, n, w, buf, i * nv + j, coef.data(), du * nv + 1, Point::Zero(), kRidge);
+        add_equation(ls, n, w, buf, i * nv + j, coef.data(), du * nv + 1, Point::Zero(), kRidge,
+                     per);
         std::fill(coef.begin(), coef.end(), 0.0);
       }
       if (j + dv < nv) {
         coef[0] = 1;
         coef[1] = dv == 2 ? -2 : -1;
         if (dv == 2) coef[2] = 1;
-        add_equation(ls, n, w, buf, i * nv + j, coef.data(), dv + 1, Point::Zero(), kRidge);
+        add_equation(ls, n, w, buf, i * nv + j, coef.data(), dv + 1, Point::Zero(), kRidge, per);
       }
     }
   std::vector<Point> x;
@@ -179,7 +209,7 @@ bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vec
 bool adapt_knots(const Rows& rows, const FitOptions& o, FitResult& r) {
   const Surface& uni = r.surface;
   const Point tol = r.report.tolerance;
-  if (uni.periodic_u || uni.periodic_v || !r.v_points.empty() || !r.report.within_tolerance ||
+  if (uni.periodic_v || !r.v_points.empty() || !r.report.within_tolerance ||
       !(tol.minCoeff() > 0) || uni.count_u * uni.count_v <= 4 || rows.size() < 2)
     return false;
   const int p = uni.degree_u, q = uni.degree_v;
@@ -190,7 +220,10 @@ bool adapt_knots(const Rows& rows, const FitOptions& o, FitResult& r) {
   centre /= static_cast<double>(rows.total_points());
 
   // 1. u knots, common to every row.
-  Breaks ku = uniform_breaks(p, std::max(1, (uni.count_u - p) / 8), eu);
+  // A closed u direction starts from as many spans as control points (at least degree + 1).
+  const bool closed = uni.periodic_u;
+  Breaks ku = closed ? uniform_breaks(p, std::max(p + 1, uni.count_u / 8), eu, true)
+                     : uniform_breaks(p, std::max(1, (uni.count_u - p) / 8), eu);
   std::vector<double> worst, at;
   for (int round = 0; round < kMaxRounds; ++round) {
     row_residuals(rows, r.u, centre, ku, tol, worst, at);
@@ -213,9 +246,11 @@ bool adapt_knots(const Rows& rows, const FitOptions& o, FitResult& r) {
   double work = 0;
   // Givens rotations of every point's and every smoothing equation into a band of the
   // width of one solve; false once the budget is spent.
+  // A closed u direction's dense tail (width w - 1) about doubles each rotation's work.
   auto afford = [&](const Breaks& a, const Breaks& b) {
     const double w = p * b.count() + q + 1;
-    work += (double(rows.total_points()) + 2.0 * a.count() * b.count()) * w * w;
+    work +=
+        (double(rows.total_points()) + 2.0 * a.count() * b.count()) * w * w * (closed ? 2.0 : 1.0);
     return ++solves <= kMaxSolves && work <= kMaxWork;
   };
   for (int round = 0; round < kMaxRounds && !held; ++round) {
@@ -269,9 +304,9 @@ bool adapt_knots(const Rows& rows, const FitOptions& o, FitResult& r) {
     return check_deviation(out, rows, r.u, r.v, tol, r.report.roundoff, o.threads).within;
   };
   for (Breaks* k : {&ku, &kv})
-    for (std::size_t i = k->b.size() - 1; i-- > 1;) {
+    for (std::size_t i = k->b.size() - 1; i-- > k->first_removable();) {
       Breaks fewer = *k;
-      fewer.remove(i);
+      if (!fewer.remove(i)) continue;
       if (!afford(k == &ku ? fewer : ku, k == &kv ? fewer : kv)) break;
       Surface t = s;
       if (holds(k == &ku ? fewer : ku, k == &kv ? fewer : kv, t)) {

@@ -19,7 +19,10 @@
 //             surface without it still holds T at every point.
 //          A small second-difference term keeps every solve defined where a span has few
 //          points; the final check (every point, per axis) decides, as for every surface.
-// LIMITS   Open directions and one v per row only (closed directions and per-point v stay
+//          Closed rows (periodic u): periodic breakpoints, b_0 a knot like the others (kept at
+//          multiplicity 1 at least: the points keep their u), solves whose u basis wraps (the
+//          cyclic band of BandedLeastSquares).
+// LIMITS   One v per row and an open v direction only (per-point v and a closed v stay
 //          uniform); sets whose solves would cost much more than the uniform search skip it.
 #pragma once
 
