@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "adaptive_pair.h"
 #include "reference_eval.h"
 #include "sfit/fold_check.h"
 #include "sfit/io/surface_json.h"
@@ -80,65 +81,21 @@ Rows ellipses() {
       std::vector<int>(12, 150), true);
 }
 
-struct Pair {
-  FitResult uniform, adaptive;
-};
-
-Pair fit_both(const Rows& rows, double fraction) {
-  FitOptions o;
-  o.closed_u = true;
-  o.tolerance = relative_tolerance(rows, fraction);
-  Pair p;
-  p.uniform = fit_surface(rows, o);
-  o.knots = KnotRule::kAdaptive;
-  p.adaptive = fit_surface(rows, o);
-  return p;
-}
-
-long count(const FitResult& r) {
-  return static_cast<long>(r.surface.count_u) * r.surface.count_v;
-}
-
-void report(const char* name, double fraction, const Pair& p) {
-  std::printf("[ measure  ] %-20s T %.0e: uniform %d x %d = %ld, adaptive %d x %d = %ld (%.2f)\n",
-              name, fraction, p.uniform.surface.count_u, p.uniform.surface.count_v,
-              count(p.uniform), p.adaptive.surface.count_u, p.adaptive.surface.count_v,
-              count(p.adaptive), double(count(p.adaptive)) / count(p.uniform));
-}
-
-// T at every point by the contract's textbook evaluation of the written surface, and no fold.
-void expect_holds(const Rows& rows, const FitResult& r) {
-  const test::ReferenceSurface ref =
-      test::reference_from_json_text(io::surface_to_json_text(r.surface));
-  const Point tol = r.report.tolerance;
-  std::size_t k = 0, missed = 0;
-  for (std::size_t j = 0; j < rows.size(); ++j)
-    for (const Point& d : rows[j]) {
-      const auto e = ref.evaluate(r.u[k], r.point_v(j, k));
-      ++k;
-      for (int a = 0; a < 3; ++a)
-        if (std::abs(e[a] - d[a]) > tol[a] * (1 + 1e-9)) ++missed;
-    }
-  EXPECT_EQ(missed, 0u);
-  EXPECT_TRUE(r.report.within_tolerance);
-  EXPECT_LE(fold_measure(r.surface, r.v), kFoldRelative * bounding_box(rows).diagonal());
-}
-
 TEST(AdaptiveKnotsClosed, CorneredClosedSectionsNeedAtLeastThirtyPercentFewer) {
   const std::pair<const char*, Rows> sets[] = {{"rectangles", rectangle_sections()},
                                                {"blunt airfoils", blunt_airfoils()}};
   for (const auto& [name, rows] : sets) {
     SCOPED_TRACE(name);
-    const Pair p = fit_both(rows, 1e-3);
-    report(name, 1e-3, p);
+    const test::UniformAndAdaptive p = test::fit_both(rows, 1e-3, true);
+    test::report(name, 1e-3, p);
     ASSERT_TRUE(p.uniform.surface.periodic_u);
-    EXPECT_LE(count(p.adaptive), 0.7 * count(p.uniform));
+    EXPECT_LE(test::count(p.adaptive), 0.7 * test::count(p.uniform));
     EXPECT_EQ(p.adaptive.report.knots, KnotRule::kAdaptive);
     const Surface& s = p.adaptive.surface;
     EXPECT_TRUE(s.periodic_u);
     EXPECT_FALSE(s.knots_u.uniform());
     EXPECT_TRUE(s.knots_u.periodic());
-    expect_holds(rows, p.adaptive);
+    test::expect_holds_at_parameters(rows, p.adaptive);
     // The periodic non-uniform knots read back as written: same knots, same points, same
     // values.
     const Surface back = io::surface_from_json_text(io::surface_to_json_text(s), "s.json");
@@ -154,13 +111,11 @@ TEST(AdaptiveKnotsClosed, CorneredClosedSectionsNeedAtLeastThirtyPercentFewer) {
 TEST(AdaptiveKnotsClosed, SmoothClosedSectionsKeepTheUniformSurface) {
   const Rows rows = ellipses();
   for (double f : {1e-2, 1e-3}) {
-    const Pair p = fit_both(rows, f);
-    report("ellipses", f, p);
-    EXPECT_EQ(count(p.adaptive), count(p.uniform));
-    EXPECT_EQ(p.adaptive.surface.control, p.uniform.surface.control);
-    EXPECT_FALSE(p.adaptive.surface.non_uniform());
-    EXPECT_EQ(p.adaptive.report.knots, KnotRule::kUniform);
-    expect_holds(rows, p.adaptive);
+    const test::UniformAndAdaptive p = test::fit_both(rows, f, true);
+    test::report("ellipses", f, p);
+    EXPECT_EQ(test::count(p.adaptive), test::count(p.uniform));
+    test::expect_uniform_kept(p);
+    test::expect_holds_at_parameters(rows, p.adaptive);
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "adaptive_pair.h"
 #include "reference_eval.h"
 #include "sfit/fold_check.h"
 #include "sfit/io/report_json.h"
@@ -48,58 +49,15 @@ Rows smooth_sheet() {
       std::vector<int>(30, 80));
 }
 
-struct Pair {
-  FitResult uniform, adaptive;
-};
-
-Pair fit_both(const Rows& rows, double fraction) {
-  FitOptions o;
-  o.tolerance = relative_tolerance(rows, fraction);
-  Pair p;
-  p.uniform = fit_surface(rows, o);
-  o.knots = KnotRule::kAdaptive;
-  p.adaptive = fit_surface(rows, o);
-  return p;
-}
-
-long count(const FitResult& r) {
-  return static_cast<long>(r.surface.count_u) * r.surface.count_v;
-}
-
-// T at every point by the contract's textbook evaluation of the written surface, and no fold.
-void expect_holds(const Rows& rows, const FitResult& r) {
-  const test::ReferenceSurface ref =
-      test::reference_from_json_text(io::surface_to_json_text(r.surface));
-  const Point tol = r.report.tolerance;
-  std::size_t k = 0, missed = 0;
-  for (std::size_t j = 0; j < rows.size(); ++j)
-    for (const Point& d : rows[j]) {
-      const auto e = ref.evaluate(r.u[k], r.point_v(j, k));
-      ++k;
-      for (int a = 0; a < 3; ++a)
-        if (std::abs(e[a] - d[a]) > tol[a] * (1 + 1e-9)) ++missed;
-    }
-  EXPECT_EQ(missed, 0u);
-  EXPECT_TRUE(r.report.within_tolerance);
-  EXPECT_LE(fold_measure(r.surface, r.v), kFoldRelative * bounding_box(rows).diagonal());
-}
-
-void report(const char* name, double fraction, const Pair& p) {
-  std::printf("[ measure  ] %-20s T %.0e: uniform %d x %d = %ld, adaptive %d x %d = %ld (%.2f)\n",
-              name, fraction, p.uniform.surface.count_u, p.uniform.surface.count_v,
-              count(p.uniform), p.adaptive.surface.count_u, p.adaptive.surface.count_v,
-              count(p.adaptive), double(count(p.adaptive)) / count(p.uniform));
-}
-
 TEST(AdaptiveKnots, CorneredSectionsAndALocalBumpNeedAtLeastThirtyPercentFewer) {
   const std::pair<const char*, Rows> sets[] = {{"box stations", box_stations(30, 160, false)},
                                                {"moving corners", box_stations(30, 200, true)},
                                                {"bump sheet", bump_sheet()}};
   for (const auto& [name, rows] : sets) {
     SCOPED_TRACE(name);
-    const Pair p = fit_both(rows, 1e-3);
-    report(name, 1e-3, p);
-    EXPECT_LE(count(p.adaptive), 0.7 * count(p.uniform));
+    const test::UniformAndAdaptive p = test::fit_both(rows, 1e-3);
+    test::report(name, 1e-3, p);
+    EXPECT_LE(test::count(p.adaptive), 0.7 * test::count(p.uniform));
     EXPECT_TRUE(p.adaptive.surface.non_uniform());
     // The report says which knots made it, and so does its JSON (read back).
     EXPECT_EQ(p.adaptive.report.knots, KnotRule::kAdaptive);
@@ -107,7 +65,7 @@ TEST(AdaptiveKnots, CorneredSectionsAndALocalBumpNeedAtLeastThirtyPercentFewer) 
     EXPECT_EQ(
         io::report_from_json_text(io::report_to_json_text(p.adaptive.report, -1), "r.json").knots,
         KnotRule::kAdaptive);
-    expect_holds(rows, p.adaptive);
+    test::expect_holds_at_parameters(rows, p.adaptive);
   }
 }
 
@@ -120,16 +78,14 @@ TEST(AdaptiveKnots, NeverMoreThanUniform) {
   for (const auto& [name, rows] : sets)
     for (double f : {1e-2, 1e-3}) {
       SCOPED_TRACE(name);
-      const Pair p = fit_both(rows, f);
-      report(name.c_str(), f, p);
-      EXPECT_LE(count(p.adaptive), count(p.uniform));
-      if (count(p.adaptive) == count(p.uniform)) {
+      const test::UniformAndAdaptive p = test::fit_both(rows, f);
+      test::report(name.c_str(), f, p);
+      EXPECT_LE(test::count(p.adaptive), test::count(p.uniform));
+      if (test::count(p.adaptive) == test::count(p.uniform)) {
         // Not smaller: the uniform surface itself, bit for bit.
-        EXPECT_EQ(p.adaptive.surface.control, p.uniform.surface.control);
-        EXPECT_FALSE(p.adaptive.surface.non_uniform());
-        EXPECT_EQ(p.adaptive.report.knots, KnotRule::kUniform);
+        test::expect_uniform_kept(p);
       }
-      expect_holds(rows, p.adaptive);
+      test::expect_holds_at_parameters(rows, p.adaptive);
     }
 }
 
