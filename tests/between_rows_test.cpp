@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "between_rows.h"
@@ -29,6 +30,16 @@ Rows plane_rows() {
     rows.end_row();
   }
   return rows;
+}
+
+// The plane rows' parameters on plane_surface(): u = x per point, v = the row's index.
+std::pair<std::vector<double>, std::vector<double>> plane_parameters(const Rows& rows) {
+  std::vector<double> u, v;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    v.push_back(static_cast<double>(j));
+    for (const Point& p : rows[j]) u.push_back(p.x());
+  }
+  return {u, v};
 }
 
 Surface plane_surface(double swing) {
@@ -56,11 +67,7 @@ Surface plane_surface(double swing) {
 TEST(BetweenRows, ACalmSurfaceStaysBetweenItsRows) {
   const Rows rows = plane_rows();
   const Surface s = plane_surface(0.0);
-  std::vector<double> u, v;
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    v.push_back(static_cast<double>(j));
-    for (const Point& p : rows[j]) u.push_back(p.x());
-  }
+  const auto [u, v] = plane_parameters(rows);
   const detail::RowPairs pairs = detail::row_pairs(rows, false);
   EXPECT_EQ(pairs.points.size(), 5u * 11u);  // every point of the first 5 rows
   EXPECT_LT(detail::between_rows_ratio(s, rows, pairs, u, v, 0.01), 1e-9);
@@ -69,11 +76,7 @@ TEST(BetweenRows, ACalmSurfaceStaysBetweenItsRows) {
 TEST(BetweenRows, ASurfaceThatSwingsBetweenItsRowsIsMeasured) {
   const Rows rows = plane_rows();
   const Surface s = plane_surface(20.0);
-  std::vector<double> u, v;
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    v.push_back(static_cast<double>(j));
-    for (const Point& p : rows[j]) u.push_back(p.x());
-  }
+  const auto [u, v] = plane_parameters(rows);
   const detail::RowPairs pairs = detail::row_pairs(rows, false);
   EXPECT_GT(detail::between_rows_ratio(s, rows, pairs, u, v, 0.01), detail::kBetweenRowsLimit);
 }

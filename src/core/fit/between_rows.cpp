@@ -12,6 +12,15 @@ constexpr std::size_t kPairsPerRow = 16;
 
 }  // namespace
 
+std::size_t nearest_in_row(std::span<const Point> row, const Point& q, double* squared) {
+  std::size_t near = 0;
+  double best = (row[0] - q).squaredNorm();
+  for (std::size_t l = 1; l < row.size(); ++l)
+    if (const double d2 = (row[l] - q).squaredNorm(); d2 < best) best = d2, near = l;
+  if (squared) *squared = best;
+  return near;
+}
+
 RowPairs row_pairs(const Rows& rows, bool closed_v) {
   RowPairs out;
   const std::size_t m = rows.size();
@@ -24,12 +33,11 @@ RowPairs row_pairs(const Rows& rows, bool closed_v) {
     const std::size_t picks = std::min(kPairsPerRow, a.size());
     for (std::size_t k = 0; k < picks; ++k) {
       const std::size_t i = picks == 1 ? 0 : k * (a.size() - 1) / (picks - 1);
-      std::size_t near = 0;
-      double best = (b[0] - a[i]).squaredNorm();
-      for (std::size_t l = 1; l < b.size(); ++l)
-        if (const double d2 = (b[l] - a[i]).squaredNorm(); d2 < best) best = d2, near = l;
+      double d2 = 0;
+      const std::size_t near = nearest_in_row(b, a[i], &d2);
       out.points.push_back({rows.offsets()[j] + i, rows.offsets()[next] + near});
-      out.gap.push_back(std::sqrt(best));
+      out.rows.push_back({j, next});
+      out.gap.push_back(std::sqrt(d2));
     }
   }
   return out;
@@ -38,21 +46,15 @@ RowPairs row_pairs(const Rows& rows, bool closed_v) {
 double between_rows_ratio(const Surface& s, const Rows& rows, const RowPairs& pairs,
                           std::span<const double> u, std::span<const double> v, double t) {
   const bool per_point = v.size() == rows.total_points();
-  std::vector<std::size_t> row_of;
-  if (!per_point) {
-    row_of.resize(rows.total_points());
-    for (std::size_t j = 0; j < rows.size(); ++j)
-      std::fill(row_of.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[j]),
-                row_of.begin() + static_cast<std::ptrdiff_t>(rows.offsets()[j + 1]), j);
-  }
   const std::span<const Point> points = rows.points();
   const double ue = s.u_end(), ve = s.v_end();
   double worst = 0;
   for (std::size_t k = 0; k < pairs.points.size(); ++k) {
     const auto [a, b] = pairs.points[k];
+    const auto [ra, rb] = pairs.rows[k];
     double ua = u[a], ub = u[b];
     if (s.periodic_u && std::abs(ua - ub) > 0.5 * ue) (ua < ub ? ua : ub) += ue;
-    double va = per_point ? v[a] : v[row_of[a]], vb = per_point ? v[b] : v[row_of[b]];
+    double va = v[per_point ? a : ra], vb = v[per_point ? b : rb];
     if (s.periodic_v && std::abs(va - vb) > 0.5 * ve) (va < vb ? va : vb) += ve;
     double um = 0.5 * (ua + ub), vm = 0.5 * (va + vb);
     if (s.periodic_u && um >= ue) um -= ue;

@@ -17,11 +17,15 @@ namespace sfit::detail {
 
 /// Neighbouring points of consecutive rows: up to 16 points spread along each row and, for
 /// each, the nearest point of the next row (closed across: the last row's next is the first),
-/// as indices into the rows' points, with their distance.
+/// as indices into the rows' points, with their rows and their distance.
 struct RowPairs {
   std::vector<std::array<std::size_t, 2>> points;
+  std::vector<std::array<std::size_t, 2>> rows;
   std::vector<double> gap;
 };
+
+/// The index of the point of `row` (not empty) nearest `q`, and its squared distance.
+std::size_t nearest_in_row(std::span<const Point> row, const Point& q, double* squared = nullptr);
 
 RowPairs row_pairs(const Rows& rows, bool closed_v);
 

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "between_rows.h"
+
 namespace sfit::detail {
 
 namespace {
@@ -94,10 +96,7 @@ NeighbourNoise neighbour_noise(const Rows& centred, const FitOptions& o, double 
       const auto other = centred[r];
       const long m = static_cast<long>(other.size());
       if (m == 0) continue;
-      long near = 0;
-      double best = (other[0] - q).squaredNorm();
-      for (long k = 1; k < m; ++k)
-        if (const double d2 = (other[k] - q).squaredNorm(); d2 < best) best = d2, near = k;
+      const long near = static_cast<long>(nearest_in_row(other, q));
       for (long d = -kOtherEachSide; d <= kOtherEachSide; ++d) {
         // A closed row shorter than the window gives each point once.
         if (o.closed_u && 2 * kOtherEachSide + 1 > m && (d < 0 || d >= m)) continue;
