@@ -62,6 +62,16 @@ bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, Fit
                               (need.empty() ? "" : "; " + need);
       return false;
     }
+    // Jumps beyond T at a minority of the points, spread over the rows and along them (a LiDAR
+    // tile's edges and trees): no median tells, yet knot lines are needed about everywhere.
+    std::string jumps;
+    if (jumps_force_interpolation(fr.centred, o, fr.roundoff, jumps)) {
+      r.report.stop_reason +=
+          "; more control points than data points: T forces interpolation, the data's jumps "
+          "between points exceed T (" +
+          jumps + "; the geometric rule below the points: " + why + ")";
+      return false;
+    }
     // What was measured, under the rules searched (no proof that no surface below the points
     // exists): the search of the row rules gave nothing smaller (its reason comes first), and
     // where each row's curve is the surface at its v, nu follows what the rows need alone

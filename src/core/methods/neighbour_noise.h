@@ -33,4 +33,27 @@ NeighbourNoise neighbour_noise(const Rows& centred, const FitOptions& o, double 
 bool neighbours_force_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
                                     std::string& why);
 
+/// Where the points that jump (farther than `factor` T from their neighbours' quadric) lie: how
+/// many rows hold one, and how many of `bins` equal parts of a row's chord length (as many as the
+/// median row has points) do. Every point of sets up to 2^18 points, a stride above.
+struct JumpSpread {
+  long points = 0;  // points predicted
+  long jumps = 0;   // of them, farther than T from their neighbours' quadric
+  long rows = 0, rows_hit = 0;
+  long bins = 0, bins_hit = 0;
+};
+JumpSpread jump_spread(const Rows& centred, const FitOptions& o, double roundoff, double factor);
+
+/// Whether jumps spread over the data force about as many control points as points. A jump:
+/// a point farther than 2 T both from the quadric through its neighbours and from the
+/// quadratic through its own row's neighbours (a surface smooth there and within T of the
+/// neighbours misses it by more than T; the row's test keeps rows far apart, whose quadric is
+/// loose, from counting). A step or spike beyond T needs knot lines on either side of it, along
+/// the rows and across them; so where the jumps lie in at least half of the rows and across at
+/// least half of a row's length (in parts as many as the median row has points), one
+/// tensor-product surface needs knot lines about everywhere (a LiDAR tile's roofs and trees,
+/// whose median point is calm). `why` gets the numbers where it does.
+bool jumps_force_interpolation(const Rows& centred, const FitOptions& o, double roundoff,
+                               std::string& why);
+
 }  // namespace sfit::detail
