@@ -18,12 +18,21 @@ std::optional<GeometricFit> geometric_minimax(const Frame& fr, const FitOptions&
                                               long& tried) {
   if (o.norm == FitNorm::kL2 || weights_matter(fr.centred)) return std::nullopt;
   std::vector<std::pair<long, std::pair<int, int>>> near;
+  // Where none is within kLinfReach: the pair least squares missed least, if within
+  // kGeometricLinfLooseReach.
+  std::pair<int, int> loose{0, 0};
+  double loose_ratio = kGeometricLinfLooseReach;
   for (const auto& [pair, verdict] : searched.verdicts()) {
     const long n = static_cast<long>(pair.first) * pair.second;
     if (n >= bound || n > kGeometricLinfUnknowns || !std::isfinite(verdict.ratio)) continue;
-    if (o.norm == FitNorm::kAuto && verdict.ratio > kLinfReach) continue;
+    if (o.norm == FitNorm::kAuto && verdict.ratio > kLinfReach) {
+      if (verdict.ratio <= loose_ratio) loose = pair, loose_ratio = verdict.ratio;
+      continue;
+    }
     near.push_back({n, pair});
   }
+  if (near.empty() && loose.first > 0)
+    near.push_back({static_cast<long>(loose.first) * loose.second, loose});
   if (near.empty()) return std::nullopt;
   std::sort(near.begin(), near.end());
   // At the search's parameters, then at the coordinate plane's where that plane is another:
