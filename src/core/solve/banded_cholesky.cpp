@@ -95,6 +95,33 @@ __attribute__((target("avx2"))) bool rows_at(double* L, long r, long b, double f
   return true;
 }
 
+// banded_substitute() of three right-hand sides, each Point's x, y, z in lanes 0-2 (lane 3
+// neither read nor written: masked): per lane the template's operations in its order.
+__attribute__((target("avx2"))) void substitute_wide(const double* L, long N, long b,
+                                                     Eigen::Vector3d* x) {
+  const long w1 = b + 1;
+  const __m256i three = _mm256_setr_epi64x(-1, -1, -1, 0);
+  auto load = [&](const Eigen::Vector3d& p) __attribute__((target("avx2"))) {
+    return _mm256_maskload_pd(p.data(), three);
+  };
+  for (long r = 0; r < N; ++r) {
+    const double* Lr = L + r * w1 - r + b;
+    __m256d sum = load(x[r]);
+    for (long k = std::max(0L, r - b); k < r; ++k)
+      sum = _mm256_sub_pd(sum, _mm256_mul_pd(_mm256_broadcast_sd(Lr + k), load(x[k])));
+    _mm256_maskstore_pd(x[r].data(), three, _mm256_div_pd(sum, _mm256_broadcast_sd(Lr + r)));
+  }
+  for (long r = N - 1; r >= 0; --r) {
+    const double* Lr = L + r * w1 - r + b;
+    const __m256d xr = _mm256_div_pd(load(x[r]), _mm256_broadcast_sd(Lr + r));
+    _mm256_maskstore_pd(x[r].data(), three, xr);
+    for (long k = std::max(0L, r - b); k < r; ++k)
+      _mm256_maskstore_pd(
+          x[k].data(), three,
+          _mm256_sub_pd(load(x[k]), _mm256_mul_pd(_mm256_broadcast_sd(Lr + k), xr)));
+  }
+}
+
 __attribute__((target("avx2"))) bool wide(double* L, long N, long b, double floor) {
   long r = 0;
   for (; r + 4 <= N; r += 4)
@@ -116,6 +143,19 @@ bool banded_cholesky(double* L, long N, long b, double floor, bool allow_wide) {
   (void)allow_wide;
 #endif
   return plain(L, N, b, floor);
+}
+
+void banded_substitute(const double* L, long N, long b, Eigen::Vector3d* x, bool allow_wide) {
+#ifdef SFIT_AVX2_CHOLESKY
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2 && allow_wide) {
+    substitute_wide(L, N, b, x);
+    return;
+  }
+#else
+  (void)allow_wide;
+#endif
+  banded_substitute<Eigen::Vector3d>(L, N, b, x);
 }
 
 }  // namespace sfit::detail
