@@ -58,7 +58,9 @@ TEST(BandedCholesky, SameBitsAsOneEntryAtATimeAndFactorsTheMatrix) {
                                                                {17, 16},
                                                                {64, 5},
                                                                {130, 39},
-                                                               {203, 90}}) {
+                                                               {203, 90},
+                                                               {258, 126},
+                                                               {301, 37}}) {
     const std::vector<double> A = random_band(N, b, static_cast<unsigned>(N * 131 + b));
     std::vector<double> L = A, R = A, P = A;
     ASSERT_TRUE(banded_cholesky(L.data(), N, b, 1e-13));

@@ -77,7 +77,29 @@ __attribute__((target("avx2"))) bool rows_at(double* L, long r, long b, double f
   for (long c = si[0]; c < std::min(si[R - 1], r); ++c)  // (columns before the block)
     for (int i = 0; i < R; ++i)
       if (si[i] <= c && !one(i, c)) return false;
-  for (long c = si[R - 1]; c < r; ++c) {
+  long c = si[R - 1];
+  // Two columns c, c + 1 at a time: each row's block read once for both. Column c + 1's dot
+  // product runs over the same blocks as column c's here (all before c), and goes on in
+  // finish() once L(r + i, c) is known: each partial sum the same products in the same order.
+  for (; c + 1 < r; c += 2) {
+    const double* Lc = row_of(L, c, b);
+    const double* Ld = row_of(L, c + 1, b);
+    __m256d acc[R], add[R];
+    for (int i = 0; i < R; ++i) acc[i] = add[i] = _mm256_setzero_pd();
+    long m = 0;
+    for (; si[R - 1] + m + 4 <= c; m += 4)
+      for (int i = 0; i < R; ++i) {
+        const __m256d a = _mm256_loadu_pd(Li[i] + si[i] + m);
+        acc[i] = _mm256_add_pd(acc[i], _mm256_mul_pd(a, _mm256_loadu_pd(Lc + si[i] + m)));
+        add[i] = _mm256_add_pd(add[i], _mm256_mul_pd(a, _mm256_loadu_pd(Ld + si[i] + m)));
+      }
+    for (int i = 0; i < R; ++i) {
+      if (!entry(Li[i], Lc, r + i, c, finish(acc[i], Li[i], Lc, si[i] + m, c), floor)) return false;
+      if (!entry(Li[i], Ld, r + i, c + 1, finish(add[i], Li[i], Ld, si[i] + m, c + 1), floor))
+        return false;
+    }
+  }
+  for (; c < r; ++c) {
     const double* Lc = row_of(L, c, b);
     __m256d acc[R];
     for (int i = 0; i < R; ++i) acc[i] = _mm256_setzero_pd();

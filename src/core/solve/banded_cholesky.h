@@ -8,7 +8,9 @@
 //          diagonal. On x86-64 with AVX2 (checked at run time) four rows at a time, the four
 //          partial sums in one 4-wide register: the same operations in the same order (no
 //          fused multiply-add), so the same bits as the plain loop, in about half the time
-//          (the factorisation was 30-60 % of the worst fits' time, perf).
+//          (the factorisation was 30-60 % of the worst fits' time, perf); and two columns at
+//          a time, each row's block of four read once for both (the second column's dot
+//          product goes on once the first's entry is known).
 #pragma once
 
 #include <algorithm>
