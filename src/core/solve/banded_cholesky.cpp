@@ -89,7 +89,8 @@ __attribute__((target("avx2"))) bool rows_at(double* L, long r, long b, double f
     long m = 0;
     for (; si[R - 1] + m + 4 <= c; m += 4)
       for (int i = 0; i < R; ++i) {
-        const __m256d a = _mm256_loadu_pd(Li[i] + si[i] + m);
+        __m256d a = _mm256_loadu_pd(Li[i] + si[i] + m);
+        __asm__("" : "+x"(a));  // (kept in a register: the columns' blocks are the operands)
         acc[i] = _mm256_add_pd(acc[i], _mm256_mul_pd(a, _mm256_loadu_pd(Lc + si[i] + m)));
         add[i] = _mm256_add_pd(add[i], _mm256_mul_pd(a, _mm256_loadu_pd(Ld + si[i] + m)));
       }
