@@ -130,15 +130,28 @@ __attribute__((target("avx2"))) void substitute_wide(const double* L, long N, lo
   for (long r = 0; r < N; ++r) {
     const double* Lr = L + r * w1 - r + b;
     __m256d sum = load(x[r]);
-    for (long k = std::max(0L, r - b); k < r; ++k)
+    long k = std::max(0L, r - b);
+    for (; k + 2 <= r; k += 2) {  // (two at a time: the same order)
       sum = _mm256_sub_pd(sum, _mm256_mul_pd(_mm256_broadcast_sd(Lr + k), load(x[k])));
+      sum = _mm256_sub_pd(sum, _mm256_mul_pd(_mm256_broadcast_sd(Lr + k + 1), load(x[k + 1])));
+    }
+    if (k < r) sum = _mm256_sub_pd(sum, _mm256_mul_pd(_mm256_broadcast_sd(Lr + k), load(x[k])));
     _mm256_maskstore_pd(x[r].data(), three, _mm256_div_pd(sum, _mm256_broadcast_sd(Lr + r)));
   }
   for (long r = N - 1; r >= 0; --r) {
     const double* Lr = L + r * w1 - r + b;
     const __m256d xr = _mm256_div_pd(load(x[r]), _mm256_broadcast_sd(Lr + r));
     _mm256_maskstore_pd(x[r].data(), three, xr);
-    for (long k = std::max(0L, r - b); k < r; ++k)
+    long k = std::max(0L, r - b);
+    for (; k + 2 <= r; k += 2) {  // (each x[k] its own update: any grouping, the same bits)
+      _mm256_maskstore_pd(
+          x[k].data(), three,
+          _mm256_sub_pd(load(x[k]), _mm256_mul_pd(_mm256_broadcast_sd(Lr + k), xr)));
+      _mm256_maskstore_pd(
+          x[k + 1].data(), three,
+          _mm256_sub_pd(load(x[k + 1]), _mm256_mul_pd(_mm256_broadcast_sd(Lr + k + 1), xr)));
+    }
+    if (k < r)
       _mm256_maskstore_pd(
           x[k].data(), three,
           _mm256_sub_pd(load(x[k]), _mm256_mul_pd(_mm256_broadcast_sd(Lr + k), xr)));
