@@ -58,7 +58,9 @@ TEST(BandedCholesky, SameBitsAsOneEntryAtATimeAndFactorsTheMatrix) {
                                                                {17, 16},
                                                                {64, 5},
                                                                {130, 39},
-                                                               {203, 90}}) {
+                                                               {203, 90},
+                                                               {258, 126},
+                                                               {301, 37}}) {
     const std::vector<double> A = random_band(N, b, static_cast<unsigned>(N * 131 + b));
     std::vector<double> L = A, R = A, P = A;
     ASSERT_TRUE(banded_cholesky(L.data(), N, b, 1e-13));
@@ -75,6 +77,42 @@ TEST(BandedCholesky, SameBitsAsOneEntryAtATimeAndFactorsTheMatrix) {
           s += L[r * (b + 1) + k - r + b] * L[c * (b + 1) + k - c + b];
         worst = std::max(worst, std::abs(s - A[r * (b + 1) + c - r + b]));
       }
+    EXPECT_LT(worst, 1e-12 * (2.0 * b + 2)) << N << " " << b;
+  }
+}
+
+TEST(BandedCholesky, ThreeRightHandSidesGiveTheSameBitsAsOnePerAxisAndSolve) {
+  // The Point substitution (the AVX2 path where the CPU has it) against the scalar template run
+  // on each axis alone: the same bits; and L L^T x = y.
+  for (const auto& [N, b] : std::vector<std::pair<long, long>>{
+           {1, 0}, {3, 2}, {5, 1}, {9, 4}, {64, 5}, {130, 39}, {203, 90}}) {
+    const std::vector<double> A = random_band(N, b, static_cast<unsigned>(N * 17 + b));
+    std::vector<double> L = A;
+    ASSERT_TRUE(banded_cholesky(L.data(), N, b, 1e-13));
+    std::mt19937 rng(static_cast<unsigned>(N + b));
+    std::uniform_real_distribution<double> U(-1, 1);
+    std::vector<Eigen::Vector3d> y(static_cast<std::size_t>(N));
+    for (auto& p : y) p = Eigen::Vector3d(U(rng), U(rng), U(rng));
+    std::vector<Eigen::Vector3d> x = y, t = y;
+    banded_substitute(L.data(), N, b, x.data());
+    banded_substitute(L.data(), N, b, t.data(), false);  // the template on any CPU
+    for (int a = 0; a < 3; ++a) {
+      std::vector<double> s(static_cast<std::size_t>(N));
+      for (long r = 0; r < N; ++r) s[r] = y[r][a];
+      banded_substitute(L.data(), N, b, s.data());
+      for (long r = 0; r < N; ++r) {
+        EXPECT_EQ(0, std::memcmp(&s[r], &x[r][a], sizeof(double))) << N << " " << b << " " << r;
+        EXPECT_EQ(0, std::memcmp(&s[r], &t[r][a], sizeof(double))) << N << " " << b << " " << r;
+      }
+    }
+    // A x = y (A symmetric, in the band store's lower triangle).
+    double worst = 0;
+    for (long r = 0; r < N; ++r) {
+      Eigen::Vector3d s = Eigen::Vector3d::Zero();
+      for (long c = std::max(0L, r - b); c <= std::min(N - 1, r + b); ++c)
+        s += A[std::max(r, c) * (b + 1) + std::min(r, c) - std::max(r, c) + b] * x[c];
+      worst = std::max(worst, (s - y[r]).cwiseAbs().maxCoeff());
+    }
     EXPECT_LT(worst, 1e-12 * (2.0 * b + 2)) << N << " " << b;
   }
 }

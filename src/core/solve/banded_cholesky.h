@@ -8,10 +8,14 @@
 //          diagonal. On x86-64 with AVX2 (checked at run time) four rows at a time, the four
 //          partial sums in one 4-wide register: the same operations in the same order (no
 //          fused multiply-add), so the same bits as the plain loop, in about half the time
-//          (the factorisation was 30-60 % of the worst fits' time, perf).
+//          (the factorisation was 30-60 % of the worst fits' time, perf); and two columns at
+//          a time, each row's block of four read once for both (the second column's dot
+//          product goes on once the first's entry is known).
 #pragma once
 
 #include <algorithm>
+
+#include <Eigen/Core>
 
 namespace sfit::detail {
 
@@ -62,5 +66,11 @@ void banded_substitute(const double* L, long N, long b, T* x) {
     for (long k = std::max(0L, r - b); k < r; ++k) x[k] -= Lr[k] * x[r];
   }
 }
+
+/// The same for three right-hand sides (one per axis, the Point type): on x86-64 with AVX2
+/// (checked at run time) the three axes in one 4-wide register, the same operations in the
+/// same order (no fused multiply-add), so the same bits as the template. `wide` false: the
+/// template on every CPU (the tests compare the two).
+void banded_substitute(const double* L, long N, long b, Eigen::Vector3d* x, bool wide = true);
 
 }  // namespace sfit::detail

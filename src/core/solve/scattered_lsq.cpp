@@ -231,13 +231,14 @@ bool scattered_solve(const ScatteredSpec& spec, int nu, int nv, const std::vecto
       if (f.bytes() > kKeptStoreBytes) f = ScatteredFactor{};
     }
   } give_back{f};
-  if (!f.factor(spec, nu, nv, band, smoothing, calm)) return false;
+  // The calm term along `normal` only: the other directions from the system without it, both
+  // factorised from one assembly.
+  const bool along = calm > 0 && normal;
+  ScatteredFactor plain;
+  if (!f.factor(spec, nu, nv, band, smoothing, calm, along ? &plain : nullptr)) return false;
   std::vector<Point> x = rhs;
   f.solve(x);
-  if (calm > 0 && normal) {
-    // The calm term along `normal` only: the other directions from the system without it.
-    ScatteredFactor plain;
-    if (!plain.factor(spec, nu, nv, band, smoothing)) return false;
+  if (along) {
     std::vector<Point> y = rhs;
     plain.solve(y);
     for (std::size_t I = 0; I < N; ++I) x[I] = y[I] + (x[I] - y[I]).dot(*normal) * *normal;
@@ -260,7 +261,8 @@ long ScatteredFactor::pos(std::size_t I) const {
 }
 
 bool ScatteredFactor::factor(const ScatteredSpec& spec, int nu, int nv,
-                             const std::vector<double>& band, double smoothing, double calm) {
+                             const std::vector<double>& band, double smoothing, double calm,
+                             ScatteredFactor* plain) {
   const int p = spec.degree_u, q = spec.degree_v;
   const bool cu = spec.closed_u, cv = spec.closed_v;
   const int wv = 2 * q + 1, W = (2 * p + 1) * wv;
@@ -330,6 +332,14 @@ bool ScatteredFactor::factor(const ScatteredSpec& spec, int nu, int nv,
       for (int l = cv ? 0 : 1; l < (cv ? nv : nv - 1); ++l)
         add_difference(at(i, (l - 1 + nv) % nv), at(i, l), at(i, (l + 1) % nv));
   }
+  if (calm > 0 && plain) {
+    // The system without the calm term: this assembly so far.
+    plain->nu_ = nu;
+    plain->nv_ = nv;
+    plain->v_major_ = v_major_;
+    plain->b_ = b;
+    plain->L_ = L;
+  }
   if (calm > 0) {
     // The calm term: first differences where either control point is weakly held.
     const double mu = calm * trace / static_cast<double>(N), weak = kWeaklyHeld * trace / N;
@@ -352,7 +362,9 @@ bool ScatteredFactor::factor(const ScatteredSpec& spec, int nu, int nv,
       }
   }
   // Banded Cholesky, L L^T, in place (banded_cholesky.h).
-  return banded_cholesky(L.data(), Nb, b, 1e-13 * (trace / static_cast<double>(N)));
+  const double floor = 1e-13 * (trace / static_cast<double>(N));
+  if (!banded_cholesky(L.data(), Nb, b, floor)) return false;
+  return !(calm > 0 && plain) || banded_cholesky(plain->L_.data(), Nb, b, floor);
 }
 
 template <class T>

@@ -78,8 +78,11 @@ class ScatteredFactor {
   /// false where the system is singular (a pivot at round-off), the band store does not match
   /// (nu, nv) or both directions are closed.
   /// `calm` > 0: with the calm term of ScatteredProblem::solve() on every axis.
+  /// `plain` (with `calm` > 0): also factorises the system without the calm term into it, from
+  /// the same assembly (the data and smoothness terms are added once; the same bits as its own
+  /// factor() without `calm`); false where either factorisation fails.
   bool factor(const ScatteredSpec& spec, int nu, int nv, const std::vector<double>& band,
-              double smoothing, double calm = 0);
+              double smoothing, double calm = 0, ScatteredFactor* plain = nullptr);
   /// x <- A^-1 x in place, x[I] for unknown I = i nv + l (the Surface's order).
   void solve(std::vector<Point>& x) const;
   void solve(std::vector<double>& x) const;
