@@ -124,6 +124,11 @@ int run_fit(const FitArgs& a) {
           : fmt::format(" (rows need {}..{}, columns {}..{})", *rmin, *rmax, *cmin, *cmax);
   say(fmt::format("surface {} x {} control points{}; {} parameters", r.count_u, r.count_v, stages,
                   to_string(r.parametrization)));
+  if (r.knots == KnotRule::kCorners)
+    say(
+        fmt::format("corner knots: {} x {} control points, a crease at each corner matched "
+                    "across the rows, chord parameters remapped to the corners",
+                    r.count_u, r.count_v));
   if (o.knots == KnotRule::kAdaptive)
     say(r.knots == KnotRule::kAdaptive
             ? fmt::format("adaptive knots: {} x {} control points, fewer than on uniform knots",

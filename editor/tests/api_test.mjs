@@ -103,7 +103,7 @@ test("bad requests get 400 with a JSON error naming the problem; the state stays
   }
   for (const [o, re] of [[{ degree: [0, 3] }, /degree/], [{ tolerance: -1 }, /tolerance/],
     [{ tolerance: [1, 2] }, /tolerance/], [{ closed: "u" }, /closed/], [{ parameters: "magic" }, /parameters/],
-    [{ search: "slow" }, /search/], [{ knots: 3 }, /knots: must be one of uniform, adaptive/],
+    [{ search: "slow" }, /search/], [{ knots: 3 }, /knots: must be one of corners, uniform, adaptive/],
     [{ colour: "red" }, /colour: unknown/]]) {
     const r = await api.post("/api/options", o);
     assert.equal(r.status, 400, JSON.stringify(o));
@@ -189,15 +189,15 @@ test("the option table: the library's, and /api/options checks through it", asyn
   const back = await api.post("/api/undo", {});
   assert.deepEqual(back.json.options, initial.options);
   // The knot rule too: adaptive knots are asked for and reported, a wrong name is refused.
-  assert.deepEqual(spec("knots").choices, ["uniform", "adaptive"]);
-  assert.equal(initial.options.knots, "uniform");
+  assert.deepEqual(spec("knots").choices, ["corners", "uniform", "adaptive"]);
+  assert.equal(initial.options.knots, "corners");
   const knots = await api.post("/api/options", { knots: "adaptive" });
   assert.equal(knots.status, 200, knots.text);
   assert.equal(knots.json.options.knots, "adaptive");
   assertWithinT(knots.json);
   const wrong = await api.post("/api/options", { knots: "random" });
   assert.equal(wrong.status, 400);
-  assert.match(wrong.json.error, /'random' is not one of uniform, adaptive/);
+  assert.match(wrong.json.error, /'random' is not one of corners, uniform, adaptive/);
   await api.post("/api/undo", {});
 });
 

@@ -162,9 +162,9 @@ test("typed T: a number, with a unit or % of the diagonal; nonsense refused in p
 
 test("the knots menu: adaptive knots asked for from the page, reported by the server, undone", async () => {
   const choices = await page.$$eval("#knots option", (os) => os.map((o) => o.textContent));
-  assert.deepEqual(choices, ["uniform", "adaptive"], "the choices are the option table's");
+  assert.deepEqual(choices, ["corners", "uniform", "adaptive"], "the choices are the option table's");
   const st0 = await consistent("before the knots");
-  assert.equal(await page.$eval("#knots", (e) => e.value), "uniform");
+  assert.equal(await page.$eval("#knots", (e) => e.value), "corners");
   const v = await version();
   await page.select("#knots", "adaptive");
   await settled(v + 1);
@@ -177,8 +177,8 @@ test("the knots menu: adaptive knots asked for from the page, reported by the se
   await page.click("#undo");
   await settled(v + 2);
   const back = await consistent("undone");
-  assert.equal(back.options.knots, "uniform");
-  assert.equal(await page.$eval("#knots", (e) => e.value), "uniform", "the menu follows the undo");
+  assert.equal(back.options.knots, "corners");
+  assert.equal(await page.$eval("#knots", (e) => e.value), "corners", "the menu follows the undo");
 });
 
 test("legends for deviation and curvature; zebra stripe controls; the control net's points can be looked at", async () => {

@@ -45,8 +45,13 @@ enum class FitNorm {
 enum class KnotRule {
   kUniform,   ///< uniform knots (the paper's)
   kAdaptive,  ///< also a fit on knots placed where the residuals concentrate, kept when smaller
+  /// The default: uniform knots, and beside them, where the rows have corners matched across
+  /// them, a degree-fold knot at each corner and uniform knots between, kept when smaller
+  /// (docs/method.md 7.13). kUniform asks for uniform knots alone; kAdaptive, as before corner
+  /// knots, for uniform and adaptive knots (no corner knots).
+  kCorners,
 };
-/// "surface", "sfit01"; "l2", "linf", "auto"; "uniform", "adaptive".
+/// "surface", "sfit01"; "l2", "linf", "auto"; "uniform", "adaptive", "corners".
 std::string_view to_string(FitMethod m);
 std::string_view to_string(FitNorm n);
 std::string_view to_string(KnotRule k);
@@ -69,8 +74,9 @@ struct FitOptions {
   Parametrization parametrization = Parametrization::kAuto;
   /// kAdaptive: beside the uniform fit, one on knots where the shape needs them (open
   /// directions, one v per row), kept only when it has strictly fewer control points, holds T
-  /// at every point and does not fold; so it never raises the count.
-  KnotRule knots = KnotRule::kUniform;
+  /// at every point and does not fold; so it never raises the count. kCorners (the default):
+  /// the corner knots beside the uniform fit where the rows have corners; kUniform: neither.
+  KnotRule knots = KnotRule::kCorners;
   /// Counts to start the searches from, e.g. a previous fit's report.row_counts and
   /// column_counts (used where their size matches the rows, the columns); kKnown takes them
   /// as the answer. Without them kFast starts each row from the previous row's count, in
@@ -140,7 +146,8 @@ struct FitReport {
   double fold = 0;           ///< how far the surface doubles back between rows (fold_check.h)
   double row_gap = 0;        ///< largest distance, sampled between rows, to the nearer data row
   /// The knots that made the surface: kAdaptive where `--knots adaptive` found a smaller
-  /// surface on its own knots (kept), else kUniform.
+  /// surface on its own knots (kept), kCorners where the corner knots did (then
+  /// `parametrization` is kChord: chord lengths remapped to the corners), else kUniform.
   KnotRule knots = KnotRule::kUniform;
   /// kSurface: the rules the search looked at, in order: their pairs tried, or none where the
   /// rows fitted alone at T need more control points than the search could win with (empty: no

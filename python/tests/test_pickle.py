@@ -137,7 +137,7 @@ def box_stations():
 
 
 def test_adaptive_knots_fit_holds_and_travels():
-    uni = sfit.fit(box_stations())
+    uni = sfit.fit(box_stations(), knots="uniform")
     f = sfit.fit(box_stations(), knots="adaptive")
     nu, nv = f.report["control_points"]
     assert nu * nv < 0.7 * np.prod(uni.report["control_points"])

@@ -17,6 +17,7 @@ UniformAndAdaptive fit_both(const Rows& rows, double fraction, bool closed_u) {
   o.closed_u = closed_u;
   o.tolerance = relative_tolerance(rows, fraction);
   UniformAndAdaptive p;
+  o.knots = KnotRule::kUniform;
   p.uniform = fit_surface(rows, o);
   o.knots = KnotRule::kAdaptive;
   p.adaptive = fit_surface(rows, o);

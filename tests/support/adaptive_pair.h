@@ -11,8 +11,8 @@ struct UniformAndAdaptive {
   FitResult uniform, adaptive;
 };
 
-/// The default fit at T = `fraction` of the diagonal with uniform knots, then with
-/// KnotRule::kAdaptive (rows closed when `closed_u`).
+/// The default fit at T = `fraction` of the diagonal on uniform knots alone (KnotRule::kUniform),
+/// then with KnotRule::kAdaptive (rows closed when `closed_u`).
 UniformAndAdaptive fit_both(const Rows& rows, double fraction, bool closed_u = false);
 
 /// nu x nv.

@@ -5,10 +5,12 @@
 
 #include "adaptive_knots.h"
 #include "aligned_fit.h"
+#include "corner_knots.h"
 #include "final_check.h"
 #include "fit_frame.h"
 #include "fit_registry.h"
 #include "parallel.h"
+#include "sfit/error.h"
 
 namespace sfit::detail {
 
@@ -63,10 +65,33 @@ FitResult run(const Rows& rows, const FitOptions& o, bool adapt, MethodState* st
   } else {
     r = state->update(spec, *changed);
   }
-  if (alignment) restore_original_order(r, rows, *alignment);
-  // 5. One final check, one criterion: the surface as returned and written, at every point.
-  check_as_written(r, rows, o);
-  // 6. Knots where the shape needs them (kept only where smaller), and where kept the same
+  // 5. Corner knots (corner_knots.h) beside the method's surface, on the rows it fitted;
+  // kept only where smaller and, below, where the final check confirms it.
+  std::optional<FitResult> plain;
+  if (adapt && !state && corner_knots_apply(mo)) {
+    FitResult c = r;
+    if (corner_knots(work, mo, centring.threads, c)) {
+      plain = std::move(r);
+      r = std::move(c);
+    }
+  }
+  if (alignment) {
+    restore_original_order(r, rows, *alignment);
+    if (plain) restore_original_order(*plain, rows, *alignment);
+  }
+  // 6. One final check, one criterion: the surface as returned and written, at every point;
+  // the corner surface where it holds there, else the method's.
+  bool checked = false;
+  if (plain) {
+    try {
+      check_as_written(r, rows, o);
+      checked = r.report.within_tolerance;
+    } catch (const Error&) {
+    }
+    if (!checked) r = std::move(*plain);
+  }
+  if (!checked) check_as_written(r, rows, o);
+  // 7. Knots where the shape needs them (kept only where smaller), and where kept the same
   // final check on the surface that is returned.
   if (adapt && o.knots == KnotRule::kAdaptive && adapt_knots(rows, o, r))
     check_as_written(r, rows, o);

@@ -104,13 +104,17 @@ std::vector<OptionSpec> make_table() {
        "--knots",
        fit,
        T::kChoice,
-       "uniform",
+       "corners",
        0,
        0,
-       {"uniform", "adaptive"},
-       "uniform, or adaptive (also fits on knots inserted where the residuals concentrate and "
-       "removed where not needed; kept only when smaller, within T and unfolded; along open "
-       "and closed rows, across open rows only)"},
+       {"corners", "uniform", "adaptive"},
+       "corners (uniform knots, and where the rows have corners matched across them also a "
+       "crease knot at each corner with uniform knots between, on chord parameters remapped to "
+       "the corners; kept only when smaller, within T, unfolded and calm between the rows; "
+       "open rows), uniform (uniform knots only), or adaptive (uniform knots, and also fits on "
+       "knots inserted where the residuals concentrate and removed where not needed; kept only "
+       "when smaller, within T and unfolded; along open and closed rows, across open rows "
+       "only)"},
       {"method", "--method", fit, T::kChoice, "surface", 0, 0, method_names, method_help},
       {"norm",
        "--norm",

@@ -39,11 +39,12 @@ bool parse_fit_method(std::string_view name, FitMethod& out) {
 }
 
 std::string_view to_string(KnotRule k) {
-  return k == KnotRule::kAdaptive ? "adaptive" : "uniform";
+  return k == KnotRule::kAdaptive ? "adaptive" : k == KnotRule::kCorners ? "corners" : "uniform";
 }
 
 bool parse_knot_rule(std::string_view name, KnotRule& out) {
-  return detail::parse_name(name, {KnotRule::kUniform, KnotRule::kAdaptive}, out);
+  return detail::parse_name(name, {KnotRule::kUniform, KnotRule::kAdaptive, KnotRule::kCorners},
+                            out);
 }
 
 bool parse_fit_norm(std::string_view name, FitNorm& out) {

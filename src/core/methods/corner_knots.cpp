@@ -1,0 +1,308 @@
+#include "corner_knots.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "banded_lsq.h"
+#include "basis_knots.h"
+#include "between_rows.h"
+#include "corner_rows.h"
+#include "deviation.h"
+#include "sfit/fold_check.h"
+#include "sfit/knot_vector.h"
+
+namespace sfit::detail {
+namespace {
+
+constexpr double kRowShare = 0.7;  // the share of T each row alone must hold (step 2)
+constexpr double kRidge = 1e-4;    // weight of the second-difference equations
+constexpr int kMaxRounds = 60;     // rounds of step 2
+constexpr int kMaxSolves = 40;     // tensor solves of steps 3 and 4 together
+constexpr double kMaxWork = 3e9;   // flops of all tensor solves together
+
+// One direction's knots for a solve: the vector (uniform or not), degree, count.
+struct DirectionKnots {
+  KnotVector knots;
+  int degree = 3;
+  int count = 0;
+};
+
+// The u knots: a degree-fold knot at each corner, spans[k] uniform spans in stretch k.
+struct CornerBreaks {
+  std::vector<double> corners;  // U_1 ... U_K in (0, 1)
+  std::vector<int> spans;       // K + 1 stretches
+  int degree = 3;
+  double edge(std::size_t k) const {
+    return k == 0 ? 0.0 : k > corners.size() ? 1.0 : corners[k - 1];
+  }
+  int count() const {
+    int c = degree + 1 + degree * static_cast<int>(corners.size());
+    for (int s : spans) c += s - 1;
+    return c;
+  }
+  DirectionKnots knots() const {
+    std::vector<double> b{0.0};
+    std::vector<int> m;
+    for (std::size_t k = 0; k < spans.size(); ++k) {
+      const double a = edge(k), e = edge(k + 1);
+      for (int i = 1; i <= spans[k]; ++i) {
+        b.push_back(i == spans[k] ? e : a + (e - a) * i / spans[k]);
+        if (k + 1 < spans.size() || i < spans[k]) m.push_back(i == spans[k] ? degree : 1);
+      }
+    }
+    return {KnotVector::from_breaks(degree, false, b, m), degree, count()};
+  }
+  std::size_t stretch_of(double t) const {
+    return static_cast<std::size_t>(std::upper_bound(corners.begin(), corners.end(), t) -
+                                    corners.begin());
+  }
+};
+
+double ratio(const Point& d, const Point& tol) {
+  return std::max(
+      {std::abs(d.x()) / tol.x(), std::abs(d.y()) / tol.y(), std::abs(d.z()) / tol.z()});
+}
+
+// Each row alone on the u knots (least squares, with the smoothing term): the worst ratio of
+// its points to T in each stretch, over every row.
+std::vector<double> stretch_worst(const Rows& rows, const std::vector<double>& u,
+                                  const Point& centre, const CornerBreaks& cb, const Point& tol) {
+  const DirectionKnots d = cb.knots();
+  const int p = d.degree, n = d.count, w = p + 1;
+  std::vector<double> worst(cb.spans.size(), 0.0), N(static_cast<std::size_t>(w)), buf;
+  std::vector<Point> c;
+  const int du = p >= 2 ? 2 : 1;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const auto row = rows[j];
+    const double* uj = u.data() + rows.offsets()[j];
+    BandedLeastSquares ls(n, w, false);
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      const int f = eval_basis(d.knots, p, n, false, uj[i], N.data());
+      ls.add(f, N.data(), row[i] - centre);
+    }
+    for (int i = 0; i + du < n; ++i) {
+      const int start = std::min(i, std::max(0, n - w));
+      buf.assign(static_cast<std::size_t>(w), 0.0);
+      const std::size_t o = static_cast<std::size_t>(i - start);
+      buf[o] = 1;
+      buf[o + 1] = du == 2 ? -2 : -1;
+      if (du == 2) buf[o + 2] = 1;
+      ls.add(start, buf.data(), Point::Zero(), kRidge);
+    }
+    if (!ls.solve(c)) {
+      std::fill(worst.begin(), worst.end(), 1e300);
+      return worst;
+    }
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      const int f = eval_basis(d.knots, p, n, false, uj[i], N.data());
+      Point s = Point::Zero();
+      for (int a = 0; a <= p; ++a)
+        s += N[static_cast<std::size_t>(a)] * c[static_cast<std::size_t>(f + a)];
+      const std::size_t k = cb.stretch_of(uj[i]);
+      worst[k] = std::max(worst[k], ratio(s + centre - row[i], tol));
+    }
+  }
+  return worst;
+}
+
+DirectionKnots uniform_v(int degree, int count, double end) {
+  const int spans = count - degree;
+  std::vector<double> b;
+  for (int i = 0; i <= spans; ++i) b.push_back(i == spans ? end : end * i / spans);
+  return {KnotVector::from_breaks(degree, false, b), degree, count};
+}
+
+// The tensor-product least squares over every point on (du, dv), with the second-difference
+// term along u (stride nv) and v, into `s` (data coordinates). Control point (i, j) is unknown
+// i nv + j; the equations go into the banded Givens QR in the order of their first unknown,
+// so each one stops rotating at the first row of R still empty (rows taken in the data's
+// order fill R ahead of them and cost the band's width times the unknowns each).
+bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
+                  const Point& centre, const DirectionKnots& du, const DirectionKnots& dv,
+                  Surface& s) {
+  const int p = du.degree, q = dv.degree, nu = du.count, nv = dv.count;
+  const int n = nu * nv, w = std::min(n, p * nv + q + 1);
+  const int ru = p >= 2 ? 2 : 1, rv = q >= 2 ? 2 : 1;
+  // Equations as (first unknown, kind, index): kind 0 a point, 1 u smoothing, 2 v smoothing.
+  struct Eq {
+    int first, kind;
+    std::size_t index;
+  };
+  std::vector<Eq> eqs;
+  eqs.reserve(rows.total_points() + 2 * static_cast<std::size_t>(n));
+  std::vector<int> fu(rows.total_points()), fv(rows.size());
+  std::vector<double> Nu(static_cast<std::size_t>(p + 1)), Nv(static_cast<std::size_t>(q + 1));
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    fv[j] = eval_basis(dv.knots, q, nv, false, v[j], Nv.data());
+    for (std::size_t k = rows.offsets()[j]; k < rows.offsets()[j + 1]; ++k) {
+      fu[k] = eval_basis(du.knots, p, nu, false, u[k], Nu.data());
+      eqs.push_back({fu[k] * nv + fv[j], 0, k});
+    }
+  }
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const std::size_t at = static_cast<std::size_t>(i * nv + j);
+      if (i + ru < nu) eqs.push_back({i * nv + j, 1, at});
+      if (j + rv < nv) eqs.push_back({i * nv + j, 2, at});
+    }
+  std::stable_sort(eqs.begin(), eqs.end(),
+                   [](const Eq& a, const Eq& b) { return a.first < b.first; });
+  BandedLeastSquares ls(n, w, false);
+  std::vector<double> coef(static_cast<std::size_t>(w));
+  std::vector<std::size_t> row_of(rows.total_points());
+  for (std::size_t j = 0; j < rows.size(); ++j)
+    for (std::size_t k = rows.offsets()[j]; k < rows.offsets()[j + 1]; ++k) row_of[k] = j;
+  for (const Eq& e : eqs) {
+    const int start = std::min(e.first, std::max(0, n - w));
+    const std::size_t o = static_cast<std::size_t>(e.first - start);
+    std::fill(coef.begin(), coef.end(), 0.0);
+    if (e.kind == 0) {
+      const std::size_t j = row_of[e.index];
+      eval_basis(du.knots, p, nu, false, u[e.index], Nu.data());
+      eval_basis(dv.knots, q, nv, false, v[j], Nv.data());
+      for (int a = 0; a <= p; ++a)
+        for (int b = 0; b <= q; ++b) coef[o + static_cast<std::size_t>(a * nv + b)] = Nu[a] * Nv[b];
+      ls.add(start, coef.data(), rows.points()[e.index] - centre, 1);
+    } else {
+      const std::size_t step = e.kind == 1 ? static_cast<std::size_t>(nv) : 1;
+      const int r = e.kind == 1 ? ru : rv;
+      coef[o] = 1;
+      coef[o + step] = r == 2 ? -2 : -1;
+      if (r == 2) coef[o + 2 * step] = 1;
+      ls.add(start, coef.data(), Point::Zero(), kRidge);
+    }
+  }
+  std::vector<Point> x;
+  if (!ls.solve(x)) return false;
+  s = Surface();
+  s.degree_u = p;
+  s.degree_v = q;
+  s.count_u = nu;
+  s.count_v = nv;
+  s.set_knots_u(du.knots);
+  s.set_knots_v(dv.knots);
+  s.control.resize(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    if (!x[static_cast<std::size_t>(k)].allFinite()) return false;
+    s.control[static_cast<std::size_t>(k)] = x[static_cast<std::size_t>(k)] + centre;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool corner_knots_apply(const FitOptions& o) {
+  return o.knots == KnotRule::kCorners && o.method == FitMethod::kSurface &&
+         o.parametrization == Parametrization::kAuto && !o.counts && !o.closed_u && !o.closed_v &&
+         o.tolerance.minCoeff() > 0;
+}
+
+bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, FitResult& r) {
+  const Surface& uni = r.surface;
+  const Point tol = r.report.tolerance;
+  if (uni.periodic_u || uni.periodic_v || !r.report.within_tolerance || !(tol.minCoeff() > 0) ||
+      rows.size() < 2 || r.v.size() != rows.size())
+    return false;
+  // 1. Corners, matched across the rows (cheap: every set pays this much).
+  std::vector<std::vector<RowCorner>> found(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) found[j] = row_corners(rows[j], tol);
+  const MatchedCorners m = match_corners(found);
+  if (m.empty()) return false;
+  const std::vector<double> u = corner_parameters(rows, m);
+  const std::vector<double>& v = r.v;
+  const int p = uni.degree_u, q = uni.degree_v;
+  const double ev = uni.v_end();
+  const long budget = static_cast<long>(uni.count_u) * uni.count_v;
+  Point centre = Point::Zero();
+  for (const Point& x : rows.points()) centre += x;
+  centre /= static_cast<double>(rows.total_points());
+
+  // 2. u spans per stretch, from each row alone.
+  CornerBreaks cb;
+  cb.corners = m.common;
+  cb.degree = p;
+  cb.spans.assign(m.common.size() + 1, 1);
+  for (int round = 0;; ++round) {
+    if (round >= kMaxRounds || cb.count() >= uni.count_u) return false;
+    const std::vector<double> worst = stretch_worst(rows, u, centre, cb, tol);
+    bool any = false;
+    for (std::size_t k = 0; k < worst.size(); ++k)
+      if (worst[k] > kRowShare) {
+        cb.spans[k] += std::max(1, cb.spans[k] / 4);
+        any = true;
+      }
+    if (!any) break;
+  }
+  // 3. and 4. The tensor solves, bounded in count and work.
+  int solves = 0;
+  double work = 0;
+  Surface s, best;
+  auto holds = [&](const CornerBreaks& a, int nv, Surface& out) {
+    const double w = p * nv + q + 1;
+    work += (double(rows.total_points()) + 2.0 * a.count() * nv) * w * w;
+    if (++solves > kMaxSolves || work > kMaxWork) return false;
+    if (!solve_tensor(rows, u, v, centre, a.knots(), uniform_v(q, nv, ev), out)) return false;
+    return check_deviation(out, rows, u, v, tol, r.report.roundoff, threads).within;
+  };
+  const int nv_top = std::max(q + 1, static_cast<int>(rows.size()));
+  int nv = 0;
+  for (int grow = 0; grow < 4 && nv == 0; ++grow) {
+    if (static_cast<long>(cb.count()) * (q + 1) >= budget) return false;
+    if (holds(cb, nv_top, s)) {
+      nv = nv_top;
+      best = s;
+    } else {
+      for (int& sp : cb.spans) sp += std::max(1, sp / 4);
+    }
+  }
+  if (nv == 0) return false;
+  for (int lo = q + 1, hi = nv_top; lo < hi;) {  // the fewest nv that holds (bisection)
+    const int mid = (lo + hi) / 2;
+    if (holds(cb, mid, s)) {
+      hi = nv = mid;
+      best = s;
+    } else {
+      lo = mid + 1;
+    }
+  }
+  for (std::size_t k = 0; k < cb.spans.size(); ++k)
+    while (cb.spans[k] > 1) {
+      CornerBreaks fewer = cb;
+      --fewer.spans[k];
+      if (!holds(fewer, nv, s)) break;
+      cb = fewer;
+      best = s;
+    }
+  while (nv > q + 1 && holds(cb, nv - 1, s)) {
+    --nv;
+    best = s;
+  }
+  // The count, the check, the fold and the calm between rows decide.
+  if (static_cast<long>(best.count_u) * best.count_v >= budget) return false;
+  const DeviationCheck c = check_deviation(best, rows, u, v, tol, r.report.roundoff, threads);
+  if (!c.within) return false;
+  const BoundingBox box = bounding_box(rows);
+  const ShapeMeasures shape = measure_shape(best, rows, u, v, box, false);
+  const double fold_limit = kFoldRelative * box.diagonal();
+  if (fold_measure(best, v) > fold_limit || shape.fold > fold_limit) return false;
+  if (between_rows_ratio(best, rows, row_pairs(rows, false), u, v, tol.maxCoeff()) >
+      kBetweenRowsLimit)
+    return false;
+  r.surface = std::move(best);
+  r.u = u;
+  r.v_points.clear();
+  r.report.count_u = r.surface.count_u;
+  r.report.count_v = r.surface.count_v;
+  r.report.max_deviation = c.max_deviation;
+  r.report.worst_row = c.worst_row;
+  r.report.worst_index = c.worst_index;
+  r.report.worst_deviation = c.worst_deviation;
+  r.report.fold = shape.fold;
+  r.report.box_excursion = shape.box_excursion;
+  r.report.row_gap = shape.row_gap;
+  r.report.knots = KnotRule::kCorners;
+  r.report.parametrization = Parametrization::kChord;
+  return true;
+}
+
+}  // namespace sfit::detail

@@ -1,0 +1,182 @@
+#include "corner_rows.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "sfit/parametrization.h"
+
+namespace sfit::detail {
+namespace {
+
+constexpr double kCornerWindow = 0.04;   // the window of arc length, a fraction of the row's
+constexpr double kCornerAngle = 0.6;     // radians (34 degrees) of turning within the window
+constexpr double kCornerOffset = 2.0;    // the corner's distance off the window's chord, in T
+constexpr double kWindowInT = 8.0;       // the window, at least this many T (noise turns less)
+constexpr double kMatchReach = 0.12;     // a corner's chord fraction off the mean, at most
+constexpr double kNeighbourJump = 0.15;  // a corner's chord fraction between neighbour rows
+constexpr double kMinShare = 0.5;        // rows with the common count, and with each corner
+
+// The point at arc length t along the polyline `row` (cumulative lengths `s`).
+Point at_arc(std::span<const Point> row, const std::vector<double>& s, double t) {
+  const auto it = std::upper_bound(s.begin(), s.end(), t);
+  const std::size_t i =
+      std::clamp<std::size_t>(static_cast<std::size_t>(it - s.begin()), 1, row.size() - 1);
+  const double d = s[i] - s[i - 1];
+  const double a = d > 0 ? std::clamp((t - s[i - 1]) / d, 0.0, 1.0) : 0.0;
+  return (1 - a) * row[i - 1] + a * row[i];
+}
+
+}  // namespace
+
+std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol) {
+  std::vector<RowCorner> out;
+  const std::size_t n = row.size();
+  if (n < 8 || !(tol.minCoeff() > 0)) return out;
+  std::vector<double> s(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) s[i] = s[i - 1] + (row[i] - row[i - 1]).norm();
+  const double len = s.back();
+  if (!(len > 0)) return out;
+  const double t = tol.maxCoeff();
+  const double w = std::max(kCornerWindow * len, kWindowInT * t), off = kCornerOffset * t;
+  // Runs of points turning by the angle; one corner per run, at its largest turning.
+  double best = 0;
+  std::size_t at = 0;
+  bool in_run = false;
+  auto close_run = [&] {
+    if (!in_run) return;
+    in_run = false;
+    const RowCorner c{s[at] / len, best};
+    if (!out.empty() && (c.fraction - out.back().fraction) * len < w) {
+      if (c.turn > out.back().turn) out.back() = c;  // two runs within a window: the sharper
+    } else {
+      out.push_back(c);
+    }
+  };
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    bool corner = false;
+    double turn = 0;
+    if (s[i] - w >= 0 && s[i] + w <= len) {
+      const Point a = at_arc(row, s, s[i] - w), b = at_arc(row, s, s[i] + w);
+      const Point d1 = row[i] - a, d2 = b - row[i], ab = b - a;
+      const double n1 = d1.norm(), n2 = d2.norm();
+      if (n1 > 0 && n2 > 0) {
+        turn = std::acos(std::clamp(d1.dot(d2) / (n1 * n2), -1.0, 1.0));
+        const double nab = ab.norm();
+        const double along = nab > 0 ? d1.dot(ab) / nab : 0.0;  // off the chord a-b: h
+        const double h = std::sqrt(std::max(0.0, n1 * n1 - along * along));
+        corner = turn >= kCornerAngle && h >= off;
+      }
+    }
+    if (corner) {
+      if (!in_run || turn > best) {
+        best = turn;
+        at = i;
+      }
+      in_run = true;
+    } else {
+      close_run();
+    }
+  }
+  close_run();
+  return out;
+}
+
+MatchedCorners match_corners(const std::vector<std::vector<RowCorner>>& corners) {
+  MatchedCorners m;
+  const std::size_t rows = corners.size();
+  if (rows < 2) return m;
+  // The common count: the one most rows have (the larger on a tie).
+  std::map<std::size_t, std::size_t> tally;
+  for (const auto& c : corners) ++tally[c.size()];
+  std::size_t count = 0, most = 0;
+  for (const auto& [k, t] : tally)
+    if (t >= most) {
+      count = k;
+      most = t;
+    }
+  if (count == 0 || static_cast<double>(most) < kMinShare * static_cast<double>(rows)) return m;
+  std::vector<double> mean(count, 0.0);
+  for (const auto& c : corners)
+    if (c.size() == count)
+      for (std::size_t k = 0; k < count; ++k) mean[k] += c[k].fraction / static_cast<double>(most);
+  // Each row's corners matched in order to the means: corner k is the row's corner nearest
+  // mean[k] within reach, taken in ascending order (a row's extra corners stay unmatched).
+  std::vector<std::vector<double>> f(rows, std::vector<double>(count, -1.0));
+  std::vector<std::size_t> found(count, 0);
+  for (std::size_t j = 0; j < rows; ++j) {
+    std::size_t next = 0;  // the first of the row's corners not yet taken
+    for (std::size_t k = 0; k < count; ++k) {
+      std::size_t pick = corners[j].size();
+      double gap = kMatchReach;
+      for (std::size_t c = next; c < corners[j].size(); ++c) {
+        const double d = std::abs(corners[j][c].fraction - mean[k]);
+        if (d <= gap) {
+          gap = d;
+          pick = c;
+        }
+      }
+      if (pick == corners[j].size()) continue;
+      f[j][k] = corners[j][pick].fraction;
+      ++found[k];
+      next = pick + 1;
+    }
+  }
+  for (std::size_t k = 0; k < count; ++k)
+    if (static_cast<double>(found[k]) < kMinShare * static_cast<double>(rows)) return m;
+  // A corner a row lacks: interpolated between the nearest rows that have it (in row order).
+  for (std::size_t k = 0; k < count; ++k)
+    for (std::size_t j = 0; j < rows; ++j) {
+      if (f[j][k] >= 0) continue;
+      long lo = static_cast<long>(j) - 1, hi = static_cast<long>(j) + 1;
+      while (lo >= 0 && f[static_cast<std::size_t>(lo)][k] < 0) --lo;
+      while (hi < static_cast<long>(rows) && f[static_cast<std::size_t>(hi)][k] < 0) ++hi;
+      const bool has_lo = lo >= 0, has_hi = hi < static_cast<long>(rows);
+      // (A run of rows lacking it: each row reads the one filled before it, on the same line.)
+      double v = 0;
+      if (has_lo && has_hi) {
+        const double a =
+            static_cast<double>(static_cast<long>(j) - lo) / static_cast<double>(hi - lo);
+        v = (1 - a) * f[static_cast<std::size_t>(lo)][k] + a * f[static_cast<std::size_t>(hi)][k];
+      } else {
+        v = f[static_cast<std::size_t>(has_lo ? lo : hi)][k];
+      }
+      f[j][k] = v;
+    }
+  // Consistency: ascending in every row, inside (0, 1), calm between neighbouring rows.
+  for (std::size_t j = 0; j < rows; ++j)
+    for (std::size_t k = 0; k < count; ++k) {
+      const double lo = k == 0 ? 0.0 : f[j][k - 1];
+      if (!(f[j][k] > lo + 0.01 && f[j][k] < 0.99)) return m;
+      if (j > 0 && std::abs(f[j][k] - f[j - 1][k]) > kNeighbourJump) return m;
+    }
+  m.common.assign(count, 0.0);
+  for (std::size_t k = 0; k < count; ++k) {
+    for (std::size_t j = 0; j < rows; ++j) m.common[k] += f[j][k];
+    m.common[k] /= static_cast<double>(rows);
+  }
+  m.fraction = std::move(f);
+  return m;
+}
+
+std::vector<double> corner_parameters(const Rows& rows, const MatchedCorners& m) {
+  std::vector<double> u;
+  u.reserve(rows.total_points());
+  const std::size_t count = m.common.size();
+  std::vector<double> x(count + 2), y(count + 2);
+  x.front() = y.front() = 0;
+  x.back() = y.back() = 1;
+  for (std::size_t k = 0; k < count; ++k) y[k + 1] = m.common[k];
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    for (std::size_t k = 0; k < count; ++k) x[k + 1] = m.fraction[j][k];
+    for (double t : normalized_positions(rows[j], Parametrization::kChord, false)) {
+      const auto it = std::upper_bound(x.begin() + 1, x.end() - 1, t);
+      const std::size_t i = static_cast<std::size_t>(it - x.begin());
+      const double a = std::clamp((t - x[i - 1]) / (x[i] - x[i - 1]), 0.0, 1.0);
+      u.push_back((1 - a) * y[i - 1] + a * y[i]);
+    }
+  }
+  return u;
+}
+
+}  // namespace sfit::detail
