@@ -111,27 +111,22 @@ TEST(JumpSpread, SpikesScatteredOverTheDataDo) {
   Uniform r(11);
   double sx[150], sy[150], sh[150];
   for (int k = 0; k < 150; ++k) sx[k] = r(0, 1), sy[k] = r(0, 1), sh[k] = r(0.04, 0.1);
-  const auto spikes = [&](double x, double y) {
-    double z = 0;
-    for (int k = 0; k < 150; ++k) {
-      const double d = std::hypot(x - sx[k], y - sy[k]) / 0.02;
-      if (d < 1) z += sh[k] * (1 - d);
-    }
-    return z;
+  // The first `count` of them.
+  const auto spikes = [&](int count) {
+    return [&, count](double x, double y) {
+      double z = 0;
+      for (int k = 0; k < count; ++k) {
+        const double d = std::hypot(x - sx[k], y - sy[k]) / 0.02;
+        if (d < 1) z += sh[k] * (1 - d);
+      }
+      return z;
+    };
   };
-  const Rows rows = scan(60, 80, spikes, 8);
+  const Rows rows = scan(60, 80, spikes(150), 8);
   std::string why;
   EXPECT_TRUE(forced(rows, 0.002, why)) << why;
   // The same spikes, fewer: 10 of them leave most rows and most of a row's length calm.
-  const auto few = [&](double x, double y) {
-    double z = 0;
-    for (int k = 0; k < 10; ++k) {
-      const double d = std::hypot(x - sx[k], y - sy[k]) / 0.02;
-      if (d < 1) z += sh[k] * (1 - d);
-    }
-    return z;
-  };
-  EXPECT_FALSE(forced(scan(60, 80, few, 8), 0.002, why)) << why;
+  EXPECT_FALSE(forced(scan(60, 80, spikes(10), 8), 0.002, why)) << why;
 }
 
 TEST(JumpSpread, NoiseWithinTDoesNot) {

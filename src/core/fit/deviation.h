@@ -36,6 +36,16 @@ struct DeviationCheck {
   bool within = true;  ///< every point within tolerance per axis (round-off at T = 0)
 };
 
+/// The check's deviations and worst point into a report (FitReport: its max_deviation,
+/// worst_row, worst_index and worst_deviation).
+template <class Report>
+void report_deviation(Report& rep, const DeviationCheck& c) {
+  rep.max_deviation = c.max_deviation;
+  rep.worst_row = c.worst_row;
+  rep.worst_index = c.worst_index;
+  rep.worst_deviation = c.worst_deviation;
+}
+
 /// Evaluates the surface at every data point's assigned parameters (u per point, in the
 /// order of rows.points(); v per row, or per point where v.size() != rows.size(), as
 /// FitResult::v_for_points()) and measures the per-axis deviation.

@@ -80,10 +80,7 @@ bool written_check(FitResult& r, const Rows& rows, const Point& tolerance, int t
   const bool room = (limit.array() >= 0).all();
   const DeviationCheck c =
       check_deviation(s, rows, r.u, r.v_for_points(), limit.cwiseMax(0.0), 0.0, threads);
-  rep.max_deviation = c.max_deviation;
-  rep.worst_row = c.worst_row;
-  rep.worst_index = c.worst_index;
-  rep.worst_deviation = c.worst_deviation;
+  report_deviation(rep, c);
   return c.within && room;
 }
 

@@ -321,10 +321,7 @@ bool adapt_knots(const Rows& rows, const FitOptions& o, FitResult& r) {
   r.surface = std::move(s);
   r.report.count_u = r.surface.count_u;
   r.report.count_v = r.surface.count_v;
-  r.report.max_deviation = c.max_deviation;
-  r.report.worst_row = c.worst_row;
-  r.report.worst_index = c.worst_index;
-  r.report.worst_deviation = c.worst_deviation;
+  report_deviation(r.report, c);
   r.report.fold = fold_measure(r.surface, r.v);
   r.report.knots = KnotRule::kAdaptive;
   return true;

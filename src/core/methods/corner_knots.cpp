@@ -293,10 +293,7 @@ bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, 
   r.v_points.clear();
   r.report.count_u = r.surface.count_u;
   r.report.count_v = r.surface.count_v;
-  r.report.max_deviation = c.max_deviation;
-  r.report.worst_row = c.worst_row;
-  r.report.worst_index = c.worst_index;
-  r.report.worst_deviation = c.worst_deviation;
+  report_deviation(r.report, c);
   r.report.fold = shape.fold;
   r.report.box_excursion = shape.box_excursion;
   r.report.row_gap = shape.row_gap;
