@@ -39,6 +39,17 @@ Rows noisy_range_image(int nx, int ny, double level, unsigned seed, double hole)
   return rows;
 }
 
+// Every point of `g` within T (judged with the rule's guards), the surface near the data and
+// unfolded; the check, for more.
+DeviationCheck expect_held_near_unfolded(const detail::Frame& fr, const detail::GeometricFit& g) {
+  DeviationCheck c;
+  EXPECT_TRUE(fr.judge(g.surface, g.u, g.v, &c, nullptr, false).holds);
+  EXPECT_TRUE(c.within);
+  EXPECT_TRUE(detail::stays_near_where_covered(g.surface, g.u, g.v, fr.centred_box));
+  EXPECT_EQ(detail::geometric_fold(g.surface), 0.0);
+  return c;
+}
+
 // 1,548 points with noise of 0.9 T: least squares over the best plane's parameters holds T
 // only at 196 control points (in effect following the noise); minimax at the nearest pair
 // holds at 190. (At noise 0.95 T and seed 1 minimax once gave 19 x 19 where least squares
@@ -65,13 +76,7 @@ TEST(GeometricMinimax, NoiseNearTHoldsBelowLeastSquaresCount) {
   EXPECT_EQ(nl2, 196);
   EXPECT_EQ(g->norm, FitNorm::kLinf);
   EXPECT_EQ(n, 190);
-  // Every point within T, the surface near the data and unfolded.
-  DeviationCheck c;
-  EXPECT_TRUE(fr.judge(g->surface, g->u, g->v, &c, nullptr, false).holds);
-  EXPECT_TRUE(c.within);
-  EXPECT_LE(c.max_deviation.z(), o.tolerance.z());
-  EXPECT_TRUE(detail::stays_near_where_covered(g->surface, g->u, g->v, fr.centred_box));
-  EXPECT_EQ(detail::geometric_fold(g->surface), 0.0);
+  EXPECT_LE(expect_held_near_unfolded(fr, *g).max_deviation.z(), o.tolerance.z());
   // Least squares asked for (norm l2): no minimax, the least-squares count.
   FitOptions only_l2 = o;
   only_l2.norm = FitNorm::kL2;
@@ -119,11 +124,7 @@ TEST(GeometricMinimax, ThePairMissedLeastIsTriedWhereNoneIsWithinReach) {
   EXPECT_EQ(g->norm, FitNorm::kLinf);
   EXPECT_EQ(g->surface.count_u, 19);
   EXPECT_EQ(g->surface.count_v, 19);
-  DeviationCheck c;
-  EXPECT_TRUE(fr.judge(g->surface, g->u, g->v, &c, nullptr, false).holds);
-  EXPECT_TRUE(c.within);
-  EXPECT_TRUE(detail::stays_near_where_covered(g->surface, g->u, g->v, fr.centred_box));
-  EXPECT_EQ(detail::geometric_fold(g->surface), 0.0);
+  expect_held_near_unfolded(fr, *g);
   const FitResult f = fit_surface(rows, o);
   EXPECT_TRUE(f.report.within_tolerance);
   EXPECT_EQ(test::size_of(f), 361);

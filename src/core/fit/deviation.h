@@ -2,7 +2,9 @@
 // section 6: the gap the paper admits in its section 3.4).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <span>
 
 #include "basis_knots.h"
@@ -35,6 +37,11 @@ struct DeviationCheck {
   double worst_ratio = 0;                 ///< max over points and axes of |S - D| / T
   bool within = true;  ///< every point within tolerance per axis (round-off at T = 0)
 };
+
+/// The largest of |d_a| / t_a over the axes (every t_a > 0): how much of T a deviation uses.
+inline double max_axis_ratio(const Point& d, const Point& t) {
+  return std::max({std::abs(d.x()) / t.x(), std::abs(d.y()) / t.y(), std::abs(d.z()) / t.z()});
+}
 
 /// The check's deviations and worst point into a report (FitReport: its max_deviation,
 /// worst_row, worst_index and worst_deviation).

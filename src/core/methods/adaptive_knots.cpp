@@ -98,11 +98,6 @@ void add_equation(BandedLeastSquares& ls, int n, int w, std::vector<double>& buf
   ls.add(start, buf.data(), rhs, weight);
 }
 
-double ratio(const Point& d, const Point& tol) {
-  return std::max(
-      {std::abs(d.x()) / tol.x(), std::abs(d.y()) / tol.y(), std::abs(d.z()) / tol.z()});
-}
-
 // Each row alone on the u knots: the worst ratio and its u per span.
 void row_residuals(const Rows& rows, const std::vector<double>& u, const Point& centre,
                    const Breaks& ku, const Point& tol, std::vector<double>& worst,
@@ -131,7 +126,7 @@ void row_residuals(const Rows& rows, const std::vector<double>& u, const Point& 
       const int f = eval_basis(k, p, n, per, uj[i], N.data());
       Point s = Point::Zero();
       for (int a = 0; a <= p; ++a) s += N[a] * c[(f + a) % n];
-      const double r = ratio(s + centre - row[i], tol);
+      const double r = max_axis_ratio(s + centre - row[i], tol);
       const std::size_t sp = ku.span_of(uj[i]);
       if (r > worst[sp]) {
         worst[sp] = r;
@@ -267,7 +262,7 @@ bool adapt_knots(const Rows& rows, const FitOptions& o, FitResult& r) {
       const std::size_t sv = kv.span_of(r.v[j]);
       for (std::size_t i = 0; i < row.size(); ++i) {
         const double t = r.u[rows.offsets()[j] + i];
-        const double x = ratio(s.evaluate(t, r.v[j]) - row[i], tol);
+        const double x = max_axis_ratio(s.evaluate(t, r.v[j]) - row[i], tol);
         if (x <= 1) continue;
         held = false;
         if (rows_in[sv] >= 2) {

@@ -58,11 +58,6 @@ struct CornerBreaks {
   }
 };
 
-double ratio(const Point& d, const Point& tol) {
-  return std::max(
-      {std::abs(d.x()) / tol.x(), std::abs(d.y()) / tol.y(), std::abs(d.z()) / tol.z()});
-}
-
 // Each row alone on the u knots (least squares, with the smoothing term): the worst ratio of
 // its points to T in each stretch, over every row.
 std::vector<double> stretch_worst(const Rows& rows, const std::vector<double>& u,
@@ -99,7 +94,7 @@ std::vector<double> stretch_worst(const Rows& rows, const std::vector<double>& u
       for (int a = 0; a <= p; ++a)
         s += N[static_cast<std::size_t>(a)] * c[static_cast<std::size_t>(f + a)];
       const std::size_t k = cb.stretch_of(uj[i]);
-      worst[k] = std::max(worst[k], ratio(s + centre - row[i], tol));
+      worst[k] = std::max(worst[k], max_axis_ratio(s + centre - row[i], tol));
     }
   }
   return worst;
