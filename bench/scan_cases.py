@@ -31,7 +31,8 @@ import time
 
 import numpy as np
 
-from scan_shapes import dem_river, fuselage, range_hole_noise, ship_stations, wind_blade
+from scan_shapes import (dem_river, fuselage, hull_variants, range_hole_noise, ship_stations,
+                         wind_blade)
 
 
 def field(x, y):
@@ -204,6 +205,7 @@ CASES = {
     "fuselage": (fuselage, ["--closed", "u"]),
     "wind_blade": (wind_blade, ["--closed", "u"]),
     "ship_stations": (ship_stations, []),
+    "hull_variants": (hull_variants, []),
     "dem_river": (dem_river, []),
     "range_hole_noise": (range_hole_noise, []),
 }
@@ -249,6 +251,7 @@ def main():
             path = os.path.join(tmp, name + ".rows")
             write_rows(path, rows)
             if a.save:
+                os.makedirs(a.save, exist_ok=True)
                 write_rows(os.path.join(a.save, name + ".rows"), rows)
             npts = sum(len(r) for r in rows)
             for tol in tols:

@@ -209,3 +209,52 @@ def range_hole_noise(rng, level=0.9):
         if keep.sum() >= 2:
             rows.append(np.column_stack([X[j, keep], Y[j, keep], Z[j, keep]]))
     return rows
+
+
+def hull_variants(rng):
+    """A hard-chine hull drawn from the seed: 16 ... 32 open stations (150 ... 400 points
+    each, spaced unevenly) over 40 ... 90 m; keel -> bottom -> chine -> a short flare ->
+    knuckle -> side -> deck corner -> deck. Every shape number is random: beam, deadrise,
+    the knuckle's height above the chine (0.15 ... 0.6 m, so at 1e-3 of the diagonal it can
+    sit within a few T of the chine), the flare's and the side's slopes (the knuckle turns by
+    15 ... 50 degrees), fillet radii of the chine and deck corner growing forward, and a
+    narrowing bow."""
+    length = rng.uniform(40, 90)
+    stations = int(rng.integers(16, 33))
+    beam0 = rng.uniform(4, 9)
+    depth0 = rng.uniform(3.5, 7)
+    dead0 = rng.uniform(8, 20)
+    knuckle_h = rng.uniform(0.15, 0.6)
+    flare = rng.uniform(15, 45)  # degrees of the flare above the horizontal
+    side = rng.uniform(65, 95)  # degrees of the side above the horizontal
+    bow = rng.uniform(0.5, 0.7)  # where the bow starts narrowing
+    r_chine_max = rng.uniform(0.0, 1.2)
+    r_deck_max = rng.uniform(0.0, 0.6)
+    camber = rng.uniform(0.0, 0.3)
+    rows = []
+    for x in np.sort(rng.uniform(0, length, stations)):
+        s = x / length
+        beam = beam0 * (1 - (max(0.0, s - bow) / (1 - bow)) ** 1.6) + 0.3
+        dead = math.radians(dead0 + 25 * max(0.0, s - bow) / (1 - bow))
+        depth = depth0 + 0.8 * s ** 2
+        chine_y = 0.8 * beam
+        chine_z = chine_y * math.tan(dead)
+        fl = math.radians(flare)
+        kn_y = chine_y + knuckle_h / math.tan(fl)
+        kn_z = chine_z + knuckle_h
+        sd = math.radians(side)
+        top_y = kn_y + (depth - kn_z) / math.tan(sd)
+        corners = np.array([[0, 0], [chine_y, chine_z], [kn_y, kn_z], [top_y, depth],
+                            [0, depth + camber]])
+        grow = max(0.0, s - 0.4) / 0.6
+        radii = [0.0, r_chine_max * grow, 0.0, r_deck_max * grow, 0.0]
+        pts = _rounded_polyline(corners, radii)
+        n = int(rng.integers(150, 401))
+        t = _uneven(rng, n, 0.6, 1.6)
+        t[0], t[-1] = 0.0, 1.0
+        t = np.unique(t)
+        d = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+        y = np.interp(t * d[-1], d, pts[:, 0])
+        z = np.interp(t * d[-1], d, pts[:, 1])
+        rows.append(np.column_stack([np.full(len(y), x), y, z]))
+    return rows
