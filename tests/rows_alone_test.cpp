@@ -46,6 +46,40 @@ TEST(RowsAlone, NoiseAboveTForcesInterpolationAndTheReportSaysSo) {
       << f.report.stop_reason;
 }
 
+// Rows with sharp corners (keel, chine, side, deck) at a tight T: on uniform knots each row
+// alone needs about all its points (a smooth curve follows a corner only with tiny spans), so
+// they once read as "T forces interpolation" (hull stations: 2,010 of 2,105 points). Fitted
+// in pieces between their corners they need a few control points a leg.
+TEST(RowsAlone, CornersAreNotNoise) {
+  Rows rows;
+  for (int j = 0; j < 10; ++j) {
+    const double x = j, b = 4 + 0.1 * j;
+    const Point c[] = {Point(x, 0, 0), Point(x, b, 0.8), Point(x, b + 0.3, 3.5),
+                       Point(x, 0.2, 3.8)};
+    const double len[] = {(c[1] - c[0]).norm(), (c[2] - c[1]).norm(), (c[3] - c[2]).norm()};
+    const double total = len[0] + len[1] + len[2];
+    for (int k = 0; k < 200; ++k) {
+      double a = total * k / 199;
+      int leg = 0;
+      while (leg < 2 && a > len[leg]) a -= len[leg++];
+      rows.push_point(c[leg] + (c[leg + 1] - c[leg]) * std::min(1.0, a / len[leg]));
+    }
+    rows.end_row();
+  }
+  const detail::Centring c = detail::centre_rows(rows, 1);
+  std::string why;
+  EXPECT_FALSE(detail::t_forces_interpolation(c.centred, at(rows, 1e-5), c.roundoff, why)) << why;
+  // The same rows with noise ten times T are forced.
+  Uniform r(5);
+  Rows noisy;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    for (const Point& p : rows[j]) noisy.push_point(p + Point(0, 0, 1e-3 * (r() - 0.5)));
+    noisy.end_row();
+  }
+  const detail::Centring n = detail::centre_rows(noisy, 1);
+  EXPECT_TRUE(detail::t_forces_interpolation(n.centred, at(noisy, 1e-5), n.roundoff, why)) << why;
+}
+
 // Smooth rows need far fewer control points than points: T forces nothing.
 TEST(RowsAlone, SmoothRowsAreNotForced) {
   Rows rows;
