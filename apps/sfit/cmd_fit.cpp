@@ -142,9 +142,11 @@ int run_fit(const FitArgs& a) {
   if (r.method == FitMethod::kSurface || o.method == FitMethod::kSurface)
     say(fmt::format("method {} ({} norm, {} pairs tried): {}", to_string(r.method),
                     to_string(r.norm), r.pairs_tried, r.stop_reason));
-  if (o.method == FitMethod::kSurface && !r.rules_searched.empty() &&
-      (o.parametrization == Parametrization::kFewest ||
-       o.parametrization == Parametrization::kAuto)) {
+  if (r.knots == KnotRule::kCorners) {
+    // the corner line above says which parameters
+  } else if (o.method == FitMethod::kSurface && !r.rules_searched.empty() &&
+             (o.parametrization == Parametrization::kFewest ||
+              o.parametrization == Parametrization::kAuto)) {
     std::string searched;
     for (Parametrization p : r.rules_searched)
       searched += (searched.empty() ? "" : ", ") + std::string(to_string(p));

@@ -252,7 +252,11 @@ TEST(LowerBound, TwoLongRowsWithAnOutlierFit) {
   // twice over, so the fallback's pairs stay cheap (docs/method.md 7.12).
   EXPECT_LT(static_cast<long>(f.surface.count_u) * f.surface.count_v, 2L * n);
   EXPECT_LE(f.surface.count_v, 4);
-  EXPECT_NE(f.report.stop_reason.find("below the points"), std::string::npos)
+  // The report says what made the surface: the fallback below the points, or corner knots
+  // (the outlier turns like a corner in its row; chord parameters give its rise and fall a
+  // stretch of u between two creases).
+  EXPECT_TRUE(f.report.stop_reason.find("below the points") != std::string::npos ||
+              f.report.stop_reason.rfind("corner knots: ", 0) == 0)
       << f.report.stop_reason;
 }
 

@@ -99,6 +99,47 @@ Rows fuselage_like() {
   return out;
 }
 
+Rows hull_stations(int stations, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  auto draw = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
+  const double length = draw(40, 90), beam0 = draw(4, 9), depth0 = draw(3.5, 7);
+  const double dead0 = draw(8, 20), knuckle = draw(0.15, 0.6), bow = draw(0.5, 0.7);
+  const double flare = draw(15, 45) * kPi / 180, side = draw(65, 95) * kPi / 180;
+  Rows out;
+  for (int j = 0; j < stations; ++j) {
+    const double s = (j + 0.5 * draw(-0.8, 0.8)) / stations, x = length * s;
+    const double fore = std::max(0.0, s - bow) / (1 - bow);
+    const double beam = beam0 * (1 - std::pow(fore, 1.6)) + 0.3;
+    const double dead = (dead0 + 25 * fore) * kPi / 180, depth = depth0 + 0.8 * s * s;
+    const double cy = 0.8 * beam, cz = cy * std::tan(dead);
+    const double ky = cy + knuckle / std::tan(flare), kz = cz + knuckle;
+    const double ty = ky + (depth - kz) / std::tan(side);
+    const std::vector<Point> corner = {Point(x, 0, 0), Point(x, cy, cz), Point(x, ky, kz),
+                                       Point(x, ty, depth), Point(x, 0, depth + 0.1)};
+    std::vector<double> arc{0};
+    for (std::size_t k = 1; k < corner.size(); ++k)
+      arc.push_back(arc.back() + (corner[k] - corner[k - 1]).norm());
+    const int n = std::uniform_int_distribution<int>(150, 400)(rng);
+    std::vector<double> t{0};
+    for (int i = 1; i < n; ++i) t.push_back(t.back() + draw(0.3, 1.7));
+    const double spacing = arc.back() / t.back();
+    // Every third row: no samples within 1.5 spacings of its knuckle (or deck corner).
+    const double gap_at = j % 3 != 0 ? -1 : arc[j % 2 == 0 ? 2 : 3];
+    for (double ti : t) {
+      const double a = ti / t.back() * arc.back();
+      if (gap_at >= 0 && std::abs(a - gap_at) < 1.5 * spacing) continue;
+      std::size_t k = 1;
+      while (k + 1 < arc.size() && arc[k] < a) ++k;
+      const double f = std::clamp((a - arc[k - 1]) / (arc[k] - arc[k - 1]), 0.0, 1.0);
+      out.push_point((1 - f) * corner[k - 1] + f * corner[k]);
+    }
+    out.end_row();
+  }
+  return out;
+}
+
 Rows rotated_copy(const Rows& rows, std::uint32_t seed, bool reverse) {
   std::mt19937 rng(seed);
   Rows out;

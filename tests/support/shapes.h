@@ -19,6 +19,14 @@ Rows teapot_spout_like();
 /// points along x (metres, 37.5 long), the rings unevenly spaced, two of them 5 cm apart.
 Rows fuselage_like();
 
+/// Hard-chine hull stations drawn from `seed` (open rows along x, metres): keel -> bottom ->
+/// chine -> a short flare -> knuckle -> side -> deck corner -> deck to the centre line, every
+/// corner sharp. Beam, deadrise, the knuckle's height above the chine (0.15 ... 0.6 m), the
+/// flare's and the side's slopes (so the knuckle turns by about 15 ... 50 degrees) and a bow
+/// that narrows over the last 30 ... 50 % are random; 150 ... 400 points a row, spaced
+/// unevenly; every third row has a gap of a few samples across its knuckle or deck corner.
+Rows hull_stations(int stations, std::uint32_t seed);
+
 /// Each closed row started at a random point (seeded), and every other row also reversed
 /// when `reverse` is set.
 Rows rotated_copy(const Rows& rows, std::uint32_t seed, bool reverse);

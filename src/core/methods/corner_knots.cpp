@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "banded_lsq.h"
 #include "basis_knots.h"
@@ -14,11 +16,12 @@
 namespace sfit::detail {
 namespace {
 
-constexpr double kRowShare = 0.7;  // the share of T each row alone must hold (step 2)
-constexpr double kRidge = 1e-4;    // weight of the second-difference equations
-constexpr int kMaxRounds = 60;     // rounds of step 2
-constexpr int kMaxSolves = 40;     // tensor solves of steps 3 and 4 together
-constexpr double kMaxWork = 3e9;   // flops of all tensor solves together
+constexpr double kRowShare = 0.7;    // the share of T each row alone must hold (step 2)
+constexpr double kRidge = 1e-4;      // weight of the second-difference equations
+constexpr int kMaxRounds = 60;       // rounds of step 2
+constexpr int kMaxSolves = 40;       // tensor solves of steps 3 and 4 together
+constexpr double kMaxWork = 3e9;     // flops of all tensor solves together
+constexpr double kOnCrease = 1e-12;  // a parameter this close past a corner's U_k is on it
 
 // One direction's knots for a solve: the vector (uniform or not), degree, count.
 struct DirectionKnots {
@@ -94,7 +97,12 @@ std::vector<double> stretch_worst(const Rows& rows, const std::vector<double>& u
       for (int a = 0; a <= p; ++a)
         s += N[static_cast<std::size_t>(a)] * c[static_cast<std::size_t>(f + a)];
       const std::size_t k = cb.stretch_of(uj[i]);
-      worst[k] = std::max(worst[k], max_axis_ratio(s + centre - row[i], tol));
+      const double miss = max_axis_ratio(s + centre - row[i], tol);
+      worst[k] = std::max(worst[k], miss);
+      // A row's corner point sits on the crease, which both stretches' control points place:
+      // its miss counts for the stretch before it too (else only the one after grows).
+      if (k > 0 && uj[i] - cb.corners[k - 1] <= kOnCrease)
+        worst[k - 1] = std::max(worst[k - 1], miss);
     }
   }
   return worst;
@@ -184,25 +192,10 @@ bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vec
   return true;
 }
 
-}  // namespace
-
-bool corner_knots_apply(const FitOptions& o) {
-  return o.knots == KnotRule::kCorners && o.method == FitMethod::kSurface &&
-         o.parametrization == Parametrization::kAuto && !o.counts && !o.closed_u && !o.closed_v &&
-         o.tolerance.minCoeff() > 0;
-}
-
-bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, FitResult& r) {
+// Steps 1 (parameters) ... 4 and the decision on the matched corners `m`.
+bool fit_on_corners(const Rows& rows, const MatchedCorners& m, int threads, FitResult& r) {
   const Surface& uni = r.surface;
   const Point tol = r.report.tolerance;
-  if (uni.periodic_u || uni.periodic_v || !r.report.within_tolerance || !(tol.minCoeff() > 0) ||
-      rows.size() < 2 || r.v.size() != rows.size())
-    return false;
-  // 1. Corners, matched across the rows (cheap: every set pays this much).
-  std::vector<std::vector<RowCorner>> found(rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) found[j] = row_corners(rows[j], tol);
-  const MatchedCorners m = match_corners(found);
-  if (m.empty()) return false;
   const std::vector<double> u = corner_parameters(rows, m);
   const std::vector<double>& v = r.v;
   const int p = uni.degree_u, q = uni.degree_v;
@@ -260,29 +253,70 @@ bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, 
       lo = mid + 1;
     }
   }
-  for (std::size_t k = 0; k < cb.spans.size(); ++k)
-    while (cb.spans[k] > 1) {
-      CornerBreaks fewer = cb;
-      --fewer.spans[k];
-      if (!holds(fewer, nv, s)) break;
-      cb = fewer;
-      best = s;
+  // Each stretch's spans: one fewer first (the usual case: step 2 was about right), then,
+  // where that held, the fewest by bisection (step 2 can overshoot by far: a miss on a crease
+  // grows both stretches beside it).
+  for (std::size_t k = 0; k < cb.spans.size(); ++k) {
+    CornerBreaks fewer = cb;
+    if (cb.spans[k] <= 1 || !holds((--fewer.spans[k], fewer), nv, s)) continue;
+    cb = fewer;
+    best = s;
+    for (int lo = 1, hi = cb.spans[k]; lo < hi;) {
+      fewer.spans[k] = (lo + hi) / 2;
+      if (holds(fewer, nv, s)) {
+        hi = fewer.spans[k];
+        cb = fewer;
+        best = s;
+      } else {
+        lo = fewer.spans[k] + 1;
+      }
     }
+  }
   while (nv > q + 1 && holds(cb, nv - 1, s)) {
     --nv;
     best = s;
   }
   // The count, the check, the fold and the calm between rows decide.
-  if (static_cast<long>(best.count_u) * best.count_v >= budget) return false;
-  const DeviationCheck c = check_deviation(best, rows, u, v, tol, r.report.roundoff, threads);
-  if (!c.within) return false;
   const BoundingBox box = bounding_box(rows);
-  const ShapeMeasures shape = measure_shape(best, rows, u, v, box, false);
   const double fold_limit = kFoldRelative * box.diagonal();
-  if (fold_measure(best, v) > fold_limit || shape.fold > fold_limit) return false;
-  if (between_rows_ratio(best, rows, row_pairs(rows, false), u, v, tol.maxCoeff()) >
-      kBetweenRowsLimit)
-    return false;
+  const RowPairs pairs = row_pairs(rows, false);
+  DeviationCheck c;
+  ShapeMeasures shape;
+  auto fit_for_use = [&](const Surface& f) {
+    if (static_cast<long>(f.count_u) * f.count_v >= budget) return false;
+    c = check_deviation(f, rows, u, v, tol, r.report.roundoff, threads);
+    if (!c.within) return false;
+    shape = measure_shape(f, rows, u, v, box, false);
+    if (fold_measure(f, v) > fold_limit || shape.fold > fold_limit) return false;
+    return between_rows_ratio(f, rows, pairs, u, v, tol.maxCoeff()) <= kBetweenRowsLimit;
+  };
+  if (!fit_for_use(best)) {
+    // The fewest nv can fold across fast-changing rows (a bow's stations) where more hold
+    // calmly: the fewest nv above it, up to one per row, whose surface is fit for use
+    // (bisection, as fold and calm need not be monotone in nv: each pick is checked).
+    if (nv >= nv_top || !holds(cb, nv_top, s) || !fit_for_use(s)) return false;
+    best = s;
+    for (int lo = std::exchange(nv, nv_top) + 1, hi = nv_top; lo < hi;) {
+      const int mid = (lo + hi) / 2;
+      if (holds(cb, mid, s) && fit_for_use(s)) {
+        hi = nv = mid;
+        best = s;
+      } else {
+        lo = mid + 1;
+      }
+    }
+    if (!fit_for_use(best)) return false;  // (c and shape of the surface kept)
+  }
+  std::string spans;
+  for (int sp : cb.spans) spans += (spans.empty() ? "" : ", ") + std::to_string(sp);
+  r.report.stop_reason =
+      "corner knots: " + std::to_string(m.common.size()) +
+      " corners matched across the rows, a crease at each; " + spans + " spans between them and " +
+      std::to_string(nv) +
+      " control points across, the fewest found that hold T unfolded; on uniform "
+      "knots the method gave " +
+      std::to_string(uni.count_u) + " x " + std::to_string(uni.count_v);
+  r.report.method = FitMethod::kSurface;
   r.surface = std::move(best);
   r.u = u;
   r.v_points.clear();
@@ -295,6 +329,32 @@ bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, 
   r.report.knots = KnotRule::kCorners;
   r.report.parametrization = Parametrization::kChord;
   return true;
+}
+
+}  // namespace
+
+bool corner_knots_apply(const FitOptions& o) {
+  return o.knots == KnotRule::kCorners && o.method == FitMethod::kSurface &&
+         o.parametrization == Parametrization::kAuto && !o.counts && !o.closed_u && !o.closed_v &&
+         o.tolerance.minCoeff() > 0;
+}
+
+bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, FitResult& r) {
+  const Point tol = r.report.tolerance;
+  if (r.surface.periodic_u || r.surface.periodic_v || !r.report.within_tolerance ||
+      !(tol.minCoeff() > 0) || rows.size() < 2 || r.v.size() != rows.size())
+    return false;
+  // 1. Corners, matched across the rows (cheap: every set pays this much). Corners followed
+  // from row to row beyond the mean's reach (a bow's) can fold the surface where the mean's
+  // own (the rest interpolated) do not: then those are tried.
+  std::vector<std::vector<RowCorner>> found(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) found[j] = row_corners(rows[j], tol);
+  const MatchedCorners m = match_corners(found);
+  if (m.empty()) return false;
+  if (fit_on_corners(rows, m, threads, r)) return true;
+  if (!m.followed) return false;
+  const MatchedCorners near = match_corners(found, false);
+  return !near.empty() && fit_on_corners(rows, near, threads, r);
 }
 
 }  // namespace sfit::detail

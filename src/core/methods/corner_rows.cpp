@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "sfit/parametrization.h"
@@ -9,13 +10,16 @@
 namespace sfit::detail {
 namespace {
 
-constexpr double kCornerWindow = 0.04;   // the window of arc length, a fraction of the row's
-constexpr double kCornerAngle = 0.6;     // radians (34 degrees) of turning within the window
-constexpr double kCornerOffset = 2.0;    // the corner's distance off the window's chord, in T
-constexpr double kWindowInT = 8.0;       // the window, at least this many T (noise turns less)
-constexpr double kMatchReach = 0.12;     // a corner's chord fraction off the mean, at most
-constexpr double kNeighbourJump = 0.15;  // a corner's chord fraction between neighbour rows
-constexpr double kMinShare = 0.5;        // rows with the common count, and with each corner
+constexpr double kCornerWindow = 0.04;      // the window of arc length, a fraction of the row's
+constexpr double kCornerAngle = 0.6;        // radians (34 degrees) of turning within the window
+constexpr double kKinkAngle = 0.35;         // radians (20 degrees): a kink's least turning
+constexpr double kKinkConcentration = 0.8;  // its turning within half the window, at least
+constexpr double kGapSpacings = 2.0;        // a segment this many median spacings long: a gap
+constexpr double kCornerOffset = 2.0;       // the corner's distance off the window's chord, in T
+constexpr double kWindowInT = 8.0;          // the window, at least this many T (noise turns less)
+constexpr double kMatchReach = 0.12;        // a corner's chord fraction off the mean, at most
+constexpr double kNeighbourJump = 0.15;     // a corner's chord fraction between neighbour rows
+constexpr double kMinShare = 0.5;           // rows with the common count, and with each corner
 
 // The point at arc length t along the polyline `row` (cumulative lengths `s`).
 Point at_arc(std::span<const Point> row, const std::vector<double>& s, double t) {
@@ -25,6 +29,51 @@ Point at_arc(std::span<const Point> row, const std::vector<double>& s, double t)
   const double d = s[i] - s[i - 1];
   const double a = d > 0 ? std::clamp((t - s[i - 1]) / d, 0.0, 1.0) : 0.0;
   return (1 - a) * row[i - 1] + a * row[i];
+}
+
+// How far the row turns at point i between the chords from and to the points a window `w` of
+// arc length before and after it (radians; 0 where the window leaves the row).
+double turn_at(std::span<const Point> row, const std::vector<double>& s, std::size_t i, double w) {
+  if (s[i] - w < 0 || s[i] + w > s.back()) return 0;
+  const Point d1 = row[i] - at_arc(row, s, s[i] - w), d2 = at_arc(row, s, s[i] + w) - row[i];
+  const double n1 = d1.norm(), n2 = d2.norm();
+  return n1 > 0 && n2 > 0 ? std::acos(std::clamp(d1.dot(d2) / (n1 * n2), -1.0, 1.0)) : 0.0;
+}
+
+// Where on the row (arc length) its corner lies, the corner's sample at arc length s[at]. A
+// sample on the corner is the corner. Where the corner fell into a gap of the row (a segment
+// next to the sample at least kGapSpacings median spacings long), the sample found is one end
+// of the gap: the legs, each the line through the gap's end and the point half a window
+// beyond it, meet (in 3D, the middle of their closest points) at P, ahead of both ends, and
+// the corner is put inside the gap in proportion to P's distance from its ends (of two gaps,
+// the one P lies nearer). Without this a row puts its crease a sample early or late, at a u
+// where the other rows are before or past their corner.
+double corner_arc(std::span<const Point> row, const std::vector<double>& s, std::size_t at,
+                  double w, double spacing) {
+  double arc = s[at], nearest = std::numeric_limits<double>::infinity();
+  auto try_gap = [&](std::size_t lo) {
+    const std::size_t hi = lo + 1;
+    if (s[hi] - s[lo] < kGapSpacings * spacing || s[lo] - 0.5 * w < 0 || s[hi] + 0.5 * w > s.back())
+      return;
+    const Point a0 = at_arc(row, s, s[lo] - 0.5 * w), b0 = at_arc(row, s, s[hi] + 0.5 * w);
+    const Point da = row[lo] - a0, db = row[hi] - b0, r = a0 - b0;
+    const double aa = da.dot(da), bb = db.dot(db), ab = da.dot(db), ar = da.dot(r);
+    const double br = db.dot(r), den = aa * bb - ab * ab;
+    if (!(den > 1e-12 * aa * bb)) return;  // (nearly) parallel legs: no corner point
+    const double ta = (ab * br - bb * ar) / den, tb = (aa * br - ab * ar) / den;
+    if (!(ta >= 1 && tb >= 1)) return;  // P behind a gap's end: the legs do not meet in it
+    const Point P = 0.5 * ((a0 + ta * da) + (b0 + tb * db));
+    const double p0 = (P - row[lo]).norm(), p1 = (row[hi] - P).norm();
+    const Point e = row[hi] - row[lo];
+    const double off = (P - row[lo] - e * (P - row[lo]).dot(e) / e.dot(e)).norm();
+    if (off < nearest) {
+      nearest = off;
+      arc = s[lo] + (s[hi] - s[lo]) * p0 / (p0 + p1);
+    }
+  };
+  if (at > 0) try_gap(at - 1);
+  if (at + 1 < row.size()) try_gap(at);
+  return arc;
 }
 
 }  // namespace
@@ -37,6 +86,10 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol)
   for (std::size_t i = 1; i < n; ++i) s[i] = s[i - 1] + (row[i] - row[i - 1]).norm();
   const double len = s.back();
   if (!(len > 0)) return out;
+  std::vector<double> step(n - 1);
+  for (std::size_t i = 1; i < n; ++i) step[i - 1] = s[i] - s[i - 1];
+  std::nth_element(step.begin(), step.begin() + step.size() / 2, step.end());
+  const double spacing = step[step.size() / 2];  // the median
   const double t = tol.maxCoeff();
   const double w = std::max(kCornerWindow * len, kWindowInT * t), off = kCornerOffset * t;
   // Runs of points turning by the angle; one corner per run, at its largest turning.
@@ -46,7 +99,7 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol)
   auto close_run = [&] {
     if (!in_run) return;
     in_run = false;
-    const RowCorner c{s[at] / len, best};
+    const RowCorner c{corner_arc(row, s, at, w, spacing) / len, best};
     if (!out.empty() && (c.fraction - out.back().fraction) * len < w) {
       if (c.turn > out.back().turn) out.back() = c;  // two runs within a window: the sharper
     } else {
@@ -65,7 +118,11 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol)
         const double nab = ab.norm();
         const double along = nab > 0 ? d1.dot(ab) / nab : 0.0;  // off the chord a-b: h
         const double h = std::sqrt(std::max(0.0, n1 * n1 - along * along));
-        corner = turn >= kCornerAngle && h >= off;
+        // A weaker turn is a corner too where it is a kink: it turns within half the window
+        // nearly as much as within the whole (a smooth bend turns about half as much).
+        corner = h >= off &&
+                 (turn >= kCornerAngle ||
+                  (turn >= kKinkAngle && turn_at(row, s, i, 0.5 * w) >= kKinkConcentration * turn));
       }
     }
     if (corner) {
@@ -82,7 +139,7 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol)
   return out;
 }
 
-MatchedCorners match_corners(const std::vector<std::vector<RowCorner>>& corners) {
+MatchedCorners match_corners(const std::vector<std::vector<RowCorner>>& corners, bool follow) {
   MatchedCorners m;
   const std::size_t rows = corners.size();
   if (rows < 2) return m;
@@ -100,27 +157,72 @@ MatchedCorners match_corners(const std::vector<std::vector<RowCorner>>& corners)
   for (const auto& c : corners)
     if (c.size() == count)
       for (std::size_t k = 0; k < count; ++k) mean[k] += c[k].fraction / static_cast<double>(most);
-  // Each row's corners matched in order to the means: corner k is the row's corner nearest
-  // mean[k] within reach, taken in ascending order (a row's extra corners stay unmatched).
+  // Each row's corners matched to the means, the sharpest first: each to the mean nearest it
+  // within reach that no sharper corner of the row took (a row's extra corners stay
+  // unmatched). Taking the means in order once gave a row lacking its first corner the second
+  // as its first; taking the nearest corner gave a weak chine the knuckle's place beside it.
   std::vector<std::vector<double>> f(rows, std::vector<double>(count, -1.0));
   std::vector<std::size_t> found(count, 0);
+  std::vector<std::vector<bool>> taken(rows);
   for (std::size_t j = 0; j < rows; ++j) {
-    std::size_t next = 0;  // the first of the row's corners not yet taken
-    for (std::size_t k = 0; k < count; ++k) {
-      std::size_t pick = corners[j].size();
+    taken[j].assign(corners[j].size(), false);
+    std::vector<std::size_t> order(corners[j].size());
+    for (std::size_t c = 0; c < order.size(); ++c) order[c] = c;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return corners[j][a].turn > corners[j][b].turn;
+    });
+    for (std::size_t c : order) {
+      std::size_t pick = count;
       double gap = kMatchReach;
-      for (std::size_t c = next; c < corners[j].size(); ++c) {
+      for (std::size_t k = 0; k < count; ++k) {
         const double d = std::abs(corners[j][c].fraction - mean[k]);
-        if (d <= gap) {
+        if (f[j][k] < 0 && d <= gap) {
           gap = d;
-          pick = c;
+          pick = k;
         }
       }
-      if (pick == corners[j].size()) continue;
-      f[j][k] = corners[j][pick].fraction;
-      ++found[k];
-      next = pick + 1;
+      if (pick == count) continue;
+      f[j][pick] = corners[j][c].fraction;
+      taken[j][c] = true;
+      ++found[pick];
     }
+  }
+  // Corners that move along the rows (a hull's chine rising towards the bow) leave the mean's
+  // reach: a row's corner k not yet found is then its untaken corner nearest the corner k of
+  // the nearest row that has it, within kNeighbourJump and in order, row after row.
+  bool followed = false;
+  for (bool grew = follow; grew;) {
+    grew = false;
+    for (std::size_t k = 0; k < count; ++k)
+      for (std::size_t j = 0; j < rows; ++j) {
+        if (f[j][k] >= 0) continue;
+        double near = -1;
+        for (std::size_t d = 1; d < rows && near < 0; ++d) {
+          if (j >= d && f[j - d][k] >= 0)
+            near = f[j - d][k];
+          else if (j + d < rows && f[j + d][k] >= 0)
+            near = f[j + d][k];
+        }
+        if (near < 0) continue;
+        double lo = 0, hi = 1;
+        for (std::size_t i = 0; i < count; ++i)
+          if (f[j][i] >= 0)
+            (i < k ? lo : hi) = i < k ? std::max(lo, f[j][i]) : std::min(hi, f[j][i]);
+        std::size_t pick = corners[j].size();
+        double gap = kNeighbourJump;
+        for (std::size_t c = 0; c < corners[j].size(); ++c) {
+          const double x = corners[j][c].fraction, d = std::abs(x - near);
+          if (!taken[j][c] && x > lo && x < hi && d <= gap) {
+            gap = d;
+            pick = c;
+          }
+        }
+        if (pick == corners[j].size()) continue;
+        f[j][k] = corners[j][pick].fraction;
+        taken[j][pick] = true;
+        ++found[k];
+        grew = followed = true;
+      }
   }
   for (std::size_t k = 0; k < count; ++k)
     if (static_cast<double>(found[k]) < kMinShare * static_cast<double>(rows)) return m;
@@ -156,6 +258,7 @@ MatchedCorners match_corners(const std::vector<std::vector<RowCorner>>& corners)
     m.common[k] /= static_cast<double>(rows);
   }
   m.fraction = std::move(f);
+  m.followed = followed;
   return m;
 }
 

@@ -42,11 +42,14 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol)
 struct MatchedCorners {
   std::vector<std::vector<double>> fraction;
   std::vector<double> common;
+  bool followed = false;  // some corner was found by following it from row to row
   bool empty() const { return common.empty(); }
 };
 
-/// Matches the corners of every row (row_corners() of each) across the rows.
-MatchedCorners match_corners(const std::vector<std::vector<RowCorner>>& corners);
+/// Matches the corners of every row (row_corners() of each) across the rows; with `follow`,
+/// a corner beyond the mean's reach is also followed from the nearest row that has it.
+MatchedCorners match_corners(const std::vector<std::vector<RowCorner>>& corners,
+                             bool follow = true);
 
 /// Each point's parameter in [0, 1]: its row's chord fraction, remapped piecewise linearly so
 /// that the row's k-th corner sits at m.common[k] (order of rows.points()).
