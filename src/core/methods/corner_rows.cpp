@@ -17,28 +17,54 @@ constexpr double kMatchReach = 0.12;     // a corner's chord fraction off the me
 constexpr double kNeighbourJump = 0.15;  // a corner's chord fraction between neighbour rows
 constexpr double kMinShare = 0.5;        // rows with the common count, and with each corner
 
-// The point at arc length t along the polyline `row` (cumulative lengths `s`).
-Point at_arc(std::span<const Point> row, const std::vector<double>& s, double t) {
+// The point at arc length t along the polyline `row` (cumulative lengths `s`; closed: s has
+// the closing segment's end too, and t wraps around the length s.back()).
+Point at_arc(std::span<const Point> row, const std::vector<double>& s, double t, bool closed) {
+  const std::size_t n = row.size();
+  if (closed) t -= s.back() * std::floor(t / s.back());
   const auto it = std::upper_bound(s.begin(), s.end(), t);
   const std::size_t i =
-      std::clamp<std::size_t>(static_cast<std::size_t>(it - s.begin()), 1, row.size() - 1);
+      std::clamp<std::size_t>(static_cast<std::size_t>(it - s.begin()), 1, s.size() - 1);
   const double d = s[i] - s[i - 1];
   const double a = d > 0 ? std::clamp((t - s[i - 1]) / d, 0.0, 1.0) : 0.0;
-  return (1 - a) * row[i - 1] + a * row[i];
+  return (1 - a) * row[i - 1] + a * row[i == n ? 0 : i];
 }
 
 }  // namespace
 
-std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol) {
+std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol, bool closed) {
   std::vector<RowCorner> out;
   const std::size_t n = row.size();
   if (n < 8 || !(tol.minCoeff() > 0)) return out;
-  std::vector<double> s(n, 0.0);
-  for (std::size_t i = 1; i < n; ++i) s[i] = s[i - 1] + (row[i] - row[i - 1]).norm();
+  std::vector<double> s(closed ? n + 1 : n, 0.0);
+  for (std::size_t i = 1; i < s.size(); ++i) s[i] = s[i - 1] + (row[i % n] - row[i - 1]).norm();
   const double len = s.back();
   if (!(len > 0)) return out;
   const double t = tol.maxCoeff();
   const double w = std::max(kCornerWindow * len, kWindowInT * t), off = kCornerOffset * t;
+  if (closed && 2 * w >= len) return out;
+  // Whether point i turns by the angle (and how far): its windows wrap on a closed row.
+  auto turning = [&](std::size_t i, double& turn) {
+    turn = 0;
+    if (!closed && (s[i] - w < 0 || s[i] + w > len)) return false;
+    const Point a = at_arc(row, s, s[i] - w, closed), b = at_arc(row, s, s[i] + w, closed);
+    const Point d1 = row[i] - a, d2 = b - row[i], ab = b - a;
+    const double n1 = d1.norm(), n2 = d2.norm();
+    if (!(n1 > 0 && n2 > 0)) return false;
+    turn = std::acos(std::clamp(d1.dot(d2) / (n1 * n2), -1.0, 1.0));
+    const double nab = ab.norm();
+    const double along = nab > 0 ? d1.dot(ab) / nab : 0.0;  // off the chord a-b: h
+    const double h = std::sqrt(std::max(0.0, n1 * n1 - along * along));
+    return turn >= kCornerAngle && h >= off;
+  };
+  // A closed row is walked from a point that does not turn, so no run straddles its start.
+  std::size_t from = 1, steps = n - 2;
+  if (closed) {
+    double turn = 0;
+    for (from = 0; from < n && turning(from, turn);) ++from;
+    if (from == n) return out;  // turning everywhere: no corner stands out
+    steps = n;
+  }
   // Runs of points turning by the angle; one corner per run, at its largest turning.
   double best = 0;
   std::size_t at = 0;
@@ -46,29 +72,17 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol)
   auto close_run = [&] {
     if (!in_run) return;
     in_run = false;
-    const RowCorner c{s[at] / len, best};
-    if (!out.empty() && (c.fraction - out.back().fraction) * len < w) {
+    const RowCorner c{s[at] / len, best, at};
+    if (!out.empty() && std::abs(c.fraction - out.back().fraction) * len < w) {
       if (c.turn > out.back().turn) out.back() = c;  // two runs within a window: the sharper
     } else {
       out.push_back(c);
     }
   };
-  for (std::size_t i = 1; i + 1 < n; ++i) {
-    bool corner = false;
+  for (std::size_t k = 0; k < steps; ++k) {
+    const std::size_t i = (from + k) % n;
     double turn = 0;
-    if (s[i] - w >= 0 && s[i] + w <= len) {
-      const Point a = at_arc(row, s, s[i] - w), b = at_arc(row, s, s[i] + w);
-      const Point d1 = row[i] - a, d2 = b - row[i], ab = b - a;
-      const double n1 = d1.norm(), n2 = d2.norm();
-      if (n1 > 0 && n2 > 0) {
-        turn = std::acos(std::clamp(d1.dot(d2) / (n1 * n2), -1.0, 1.0));
-        const double nab = ab.norm();
-        const double along = nab > 0 ? d1.dot(ab) / nab : 0.0;  // off the chord a-b: h
-        const double h = std::sqrt(std::max(0.0, n1 * n1 - along * along));
-        corner = turn >= kCornerAngle && h >= off;
-      }
-    }
-    if (corner) {
+    if (turning(i, turn)) {
       if (!in_run || turn > best) {
         best = turn;
         at = i;
@@ -79,6 +93,16 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol)
     }
   }
   close_run();
+  if (!closed) return out;
+  std::sort(out.begin(), out.end(),
+            [](const RowCorner& x, const RowCorner& y) { return x.fraction < y.fraction; });
+  // The last and the first corner within a window across the start: the sharper.
+  if (out.size() > 1 && (1 - out.back().fraction + out.front().fraction) * len < w) {
+    if (out.back().turn > out.front().turn) out.front() = out.back();
+    out.pop_back();
+    std::sort(out.begin(), out.end(),
+              [](const RowCorner& x, const RowCorner& y) { return x.fraction < y.fraction; });
+  }
   return out;
 }
 
@@ -163,13 +187,19 @@ std::vector<double> corner_parameters(const Rows& rows, const MatchedCorners& m)
   std::vector<double> u;
   u.reserve(rows.total_points());
   const std::size_t count = m.common.size();
+  const bool closed = !m.seam.empty();
   std::vector<double> x(count + 2), y(count + 2);
   x.front() = y.front() = 0;
   x.back() = y.back() = 1;
   for (std::size_t k = 0; k < count; ++k) y[k + 1] = m.common[k];
   for (std::size_t j = 0; j < rows.size(); ++j) {
     for (std::size_t k = 0; k < count; ++k) x[k + 1] = m.fraction[j][k];
-    for (double t : normalized_positions(rows[j], Parametrization::kChord, false)) {
+    std::vector<double> f = normalized_positions(rows[j], Parametrization::kChord, closed);
+    if (closed) {  // counted from the seam: its point at 0, the one before it just below 1
+      const double f0 = f[m.seam[j]];
+      for (double& t : f) t = t >= f0 ? t - f0 : std::min(1.0, t - f0 + 1);
+    }
+    for (double t : f) {
       const auto it = std::upper_bound(x.begin() + 1, x.end() - 1, t);
       const std::size_t i = static_cast<std::size_t>(it - x.begin());
       const double a = std::clamp((t - x[i - 1]) / (x[i] - x[i - 1]), 0.0, 1.0);

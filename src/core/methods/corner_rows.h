@@ -17,8 +17,9 @@
 //             rows, a jump between neighbours): no corners.
 //          3. Parameters: each row's chord fractions remapped piecewise linearly so its k-th
 //             corner sits at U_k, the mean of the rows' k-th corner fractions.
-// LIMITS   Open rows only (closed rows keep their parameters); corners within one window of
-//          a row's ends are not looked for (the ends are creases already).
+// LIMITS   Corners within one window of an open row's ends are not looked for (the ends are
+//          creases already); on a closed row the windows wrap around. Closed rows are matched
+//          by closed_corners.h (a seam at a common corner), then here.
 #pragma once
 
 #include <span>
@@ -28,28 +29,36 @@
 
 namespace sfit::detail {
 
-/// One corner of a row: its chord fraction (0 ... 1) and how far it turns (radians).
+/// One corner of a row: its chord fraction (0 ... 1), how far it turns (radians), its point.
 struct RowCorner {
   double fraction = 0;
   double turn = 0;
+  std::size_t index = 0;
 };
 
-/// The corners of an open row (chord fractions ascending), at per-axis tolerance `tol`.
-std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol);
+/// The corners of a row (chord fractions ascending), at per-axis tolerance `tol`; `closed`:
+/// the row closes from its last point to its first (fractions of the closed length, the
+/// windows wrapping around).
+std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol,
+                                   bool closed = false);
 
 /// Matched corners: fraction[j][k] is row j's k-th corner (detected or interpolated),
-/// common[k] = U_k their mean; empty when the rows have no consistent corners.
+/// common[k] = U_k their mean; empty when the rows have no consistent corners. Closed rows
+/// (closed_corners.h): seam[j] is the index of row j's point at u = 0 (its seam corner, every
+/// fraction counted from it), and common may be empty (the seam the only corner).
 struct MatchedCorners {
   std::vector<std::vector<double>> fraction;
   std::vector<double> common;
-  bool empty() const { return common.empty(); }
+  std::vector<std::size_t> seam;
+  bool empty() const { return common.empty() && seam.empty(); }
 };
 
 /// Matches the corners of every row (row_corners() of each) across the rows.
 MatchedCorners match_corners(const std::vector<std::vector<RowCorner>>& corners);
 
-/// Each point's parameter in [0, 1]: its row's chord fraction, remapped piecewise linearly so
-/// that the row's k-th corner sits at m.common[k] (order of rows.points()).
+/// Each point's parameter in [0, 1]: its row's chord fraction (closed: of the closed length,
+/// counted from the seam), remapped piecewise linearly so that the row's k-th corner sits at
+/// m.common[k] (order of rows.points()).
 std::vector<double> corner_parameters(const Rows& rows, const MatchedCorners& m);
 
 }  // namespace sfit::detail
