@@ -6,6 +6,7 @@
 #include "banded_lsq.h"
 #include "basis_knots.h"
 #include "between_rows.h"
+#include "closed_corners.h"
 #include "corner_rows.h"
 #include "deviation.h"
 #include "sfit/fold_check.h"
@@ -27,22 +28,25 @@ struct DirectionKnots {
   int count = 0;
 };
 
-// The u knots: a degree-fold knot at each corner, spans[k] uniform spans in stretch k.
+// The u knots: a degree-fold knot at each corner, spans[k] uniform spans in stretch k; closed
+// (periodic, period 1): a degree-fold knot at 0 too, the seam.
 struct CornerBreaks {
   std::vector<double> corners;  // U_1 ... U_K in (0, 1)
   std::vector<int> spans;       // K + 1 stretches
   int degree = 3;
+  bool closed = false;
   double edge(std::size_t k) const {
     return k == 0 ? 0.0 : k > corners.size() ? 1.0 : corners[k - 1];
   }
   int count() const {
-    int c = degree + 1 + degree * static_cast<int>(corners.size());
+    int c = degree + (closed ? 0 : 1) + degree * static_cast<int>(corners.size());
     for (int s : spans) c += s - 1;
     return c;
   }
   DirectionKnots knots() const {
     std::vector<double> b{0.0};
     std::vector<int> m;
+    if (closed) m.push_back(degree);
     for (std::size_t k = 0; k < spans.size(); ++k) {
       const double a = edge(k), e = edge(k + 1);
       for (int i = 1; i <= spans[k]; ++i) {
@@ -50,7 +54,7 @@ struct CornerBreaks {
         if (k + 1 < spans.size() || i < spans[k]) m.push_back(i == spans[k] ? degree : 1);
       }
     }
-    return {KnotVector::from_breaks(degree, false, b, m), degree, count()};
+    return {KnotVector::from_breaks(degree, closed, b, m), degree, count()};
   }
   std::size_t stretch_of(double t) const {
     return static_cast<std::size_t>(std::upper_bound(corners.begin(), corners.end(), t) -
@@ -64,19 +68,20 @@ std::vector<double> stretch_worst(const Rows& rows, const std::vector<double>& u
                                   const Point& centre, const CornerBreaks& cb, const Point& tol) {
   const DirectionKnots d = cb.knots();
   const int p = d.degree, n = d.count, w = p + 1;
+  const bool per = cb.closed;
   std::vector<double> worst(cb.spans.size(), 0.0), N(static_cast<std::size_t>(w)), buf;
   std::vector<Point> c;
   const int du = p >= 2 ? 2 : 1;
   for (std::size_t j = 0; j < rows.size(); ++j) {
     const auto row = rows[j];
     const double* uj = u.data() + rows.offsets()[j];
-    BandedLeastSquares ls(n, w, false);
+    BandedLeastSquares ls(n, w, per);
     for (std::size_t i = 0; i < row.size(); ++i) {
-      const int f = eval_basis(d.knots, p, n, false, uj[i], N.data());
-      ls.add(f, N.data(), row[i] - centre);
+      const int f = eval_basis(d.knots, p, n, per, uj[i], N.data());
+      ls.add(f % n, N.data(), row[i] - centre);
     }
-    for (int i = 0; i + du < n; ++i) {
-      const int start = std::min(i, std::max(0, n - w));
+    for (int i = 0; i + (per ? 0 : du) < n; ++i) {  // closed: around the wrap too
+      const int start = per ? i : std::min(i, std::max(0, n - w));
       buf.assign(static_cast<std::size_t>(w), 0.0);
       const std::size_t o = static_cast<std::size_t>(i - start);
       buf[o] = 1;
@@ -89,10 +94,10 @@ std::vector<double> stretch_worst(const Rows& rows, const std::vector<double>& u
       return worst;
     }
     for (std::size_t i = 0; i < row.size(); ++i) {
-      const int f = eval_basis(d.knots, p, n, false, uj[i], N.data());
+      const int f = eval_basis(d.knots, p, n, per, uj[i], N.data());
       Point s = Point::Zero();
       for (int a = 0; a <= p; ++a)
-        s += N[static_cast<std::size_t>(a)] * c[static_cast<std::size_t>(f + a)];
+        s += N[static_cast<std::size_t>(a)] * c[static_cast<std::size_t>((f + a) % n)];
       const std::size_t k = cb.stretch_of(uj[i]);
       worst[k] = std::max(worst[k], max_axis_ratio(s + centre - row[i], tol));
     }
@@ -111,12 +116,15 @@ DirectionKnots uniform_v(int degree, int count, double end) {
 // term along u (stride nv) and v, into `s` (data coordinates). Control point (i, j) is unknown
 // i nv + j; the equations go into the banded Givens QR in the order of their first unknown,
 // so each one stops rotating at the first row of R still empty (rows taken in the data's
-// order fill R ahead of them and cost the band's width times the unknowns each).
+// order fill R ahead of them and cost the band's width times the unknowns each). A periodic
+// u (closed rows): u's wrap (i mod nu) is the cyclic band's (mod nu nv), held by
+// BandedLeastSquares in a dense tail.
 bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
                   const Point& centre, const DirectionKnots& du, const DirectionKnots& dv,
                   Surface& s) {
   const int p = du.degree, q = dv.degree, nu = du.count, nv = dv.count;
   const int n = nu * nv, w = std::min(n, p * nv + q + 1);
+  const bool per = du.knots.periodic();
   const int ru = p >= 2 ? 2 : 1, rv = q >= 2 ? 2 : 1;
   // Equations as (first unknown, kind, index): kind 0 a point, 1 u smoothing, 2 v smoothing.
   struct Eq {
@@ -130,30 +138,30 @@ bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vec
   for (std::size_t j = 0; j < rows.size(); ++j) {
     fv[j] = eval_basis(dv.knots, q, nv, false, v[j], Nv.data());
     for (std::size_t k = rows.offsets()[j]; k < rows.offsets()[j + 1]; ++k) {
-      fu[k] = eval_basis(du.knots, p, nu, false, u[k], Nu.data());
+      fu[k] = eval_basis(du.knots, p, nu, per, u[k], Nu.data());
       eqs.push_back({fu[k] * nv + fv[j], 0, k});
     }
   }
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j) {
       const std::size_t at = static_cast<std::size_t>(i * nv + j);
-      if (i + ru < nu) eqs.push_back({i * nv + j, 1, at});
+      if (per || i + ru < nu) eqs.push_back({i * nv + j, 1, at});
       if (j + rv < nv) eqs.push_back({i * nv + j, 2, at});
     }
   std::stable_sort(eqs.begin(), eqs.end(),
                    [](const Eq& a, const Eq& b) { return a.first < b.first; });
-  BandedLeastSquares ls(n, w, false);
+  BandedLeastSquares ls(n, w, per);
   std::vector<double> coef(static_cast<std::size_t>(w));
   std::vector<std::size_t> row_of(rows.total_points());
   for (std::size_t j = 0; j < rows.size(); ++j)
     for (std::size_t k = rows.offsets()[j]; k < rows.offsets()[j + 1]; ++k) row_of[k] = j;
   for (const Eq& e : eqs) {
-    const int start = std::min(e.first, std::max(0, n - w));
-    const std::size_t o = static_cast<std::size_t>(e.first - start);
+    const int start = per ? e.first % n : std::min(e.first, std::max(0, n - w));
+    const std::size_t o = per ? 0 : static_cast<std::size_t>(e.first - start);
     std::fill(coef.begin(), coef.end(), 0.0);
     if (e.kind == 0) {
       const std::size_t j = row_of[e.index];
-      eval_basis(du.knots, p, nu, false, u[e.index], Nu.data());
+      eval_basis(du.knots, p, nu, per, u[e.index], Nu.data());
       eval_basis(dv.knots, q, nv, false, v[j], Nv.data());
       for (int a = 0; a <= p; ++a)
         for (int b = 0; b <= q; ++b) coef[o + static_cast<std::size_t>(a * nv + b)] = Nu[a] * Nv[b];
@@ -174,6 +182,7 @@ bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vec
   s.degree_v = q;
   s.count_u = nu;
   s.count_v = nv;
+  s.periodic_u = per;
   s.set_knots_u(du.knots);
   s.set_knots_v(dv.knots);
   s.control.resize(static_cast<std::size_t>(n));
@@ -188,20 +197,22 @@ bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vec
 
 bool corner_knots_apply(const FitOptions& o) {
   return o.knots == KnotRule::kCorners && o.method == FitMethod::kSurface &&
-         o.parametrization == Parametrization::kAuto && !o.counts && !o.closed_u && !o.closed_v &&
+         o.parametrization == Parametrization::kAuto && !o.counts && !o.closed_v &&
          o.tolerance.minCoeff() > 0;
 }
 
 bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, FitResult& r) {
   const Surface& uni = r.surface;
   const Point tol = r.report.tolerance;
-  if (uni.periodic_u || uni.periodic_v || !r.report.within_tolerance || !(tol.minCoeff() > 0) ||
-      rows.size() < 2 || r.v.size() != rows.size())
+  if (uni.periodic_v || !r.report.within_tolerance || !(tol.minCoeff() > 0) || rows.size() < 2 ||
+      r.v.size() != rows.size())
     return false;
-  // 1. Corners, matched across the rows (cheap: every set pays this much).
+  // 1. Corners, matched across the rows (cheap: every set pays this much); closed rows with a
+  // seam at a common corner (closed_corners.h).
+  const bool closed = uni.periodic_u;
   std::vector<std::vector<RowCorner>> found(rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) found[j] = row_corners(rows[j], tol);
-  const MatchedCorners m = match_corners(found);
+  for (std::size_t j = 0; j < rows.size(); ++j) found[j] = row_corners(rows[j], tol, closed);
+  const MatchedCorners m = closed ? match_closed_corners(rows, found) : match_corners(found);
   if (m.empty()) return false;
   const std::vector<double> u = corner_parameters(rows, m);
   const std::vector<double>& v = r.v;
@@ -216,7 +227,9 @@ bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, 
   CornerBreaks cb;
   cb.corners = m.common;
   cb.degree = p;
+  cb.closed = closed;
   cb.spans.assign(m.common.size() + 1, 1);
+  while (cb.count() < p + 1) ++cb.spans[0];  // closed: a periodic u needs degree + 1
   for (int round = 0;; ++round) {
     if (round >= kMaxRounds || cb.count() >= uni.count_u) return false;
     const std::vector<double> worst = stretch_worst(rows, u, centre, cb, tol);
@@ -264,7 +277,7 @@ bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, 
     while (cb.spans[k] > 1) {
       CornerBreaks fewer = cb;
       --fewer.spans[k];
-      if (!holds(fewer, nv, s)) break;
+      if (fewer.count() < p + 1 || !holds(fewer, nv, s)) break;
       cb = fewer;
       best = s;
     }
@@ -277,7 +290,7 @@ bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, 
   const DeviationCheck c = check_deviation(best, rows, u, v, tol, r.report.roundoff, threads);
   if (!c.within) return false;
   const BoundingBox box = bounding_box(rows);
-  const ShapeMeasures shape = measure_shape(best, rows, u, v, box, false);
+  const ShapeMeasures shape = measure_shape(best, rows, u, v, box, closed);
   const double fold_limit = kFoldRelative * box.diagonal();
   if (fold_measure(best, v) > fold_limit || shape.fold > fold_limit) return false;
   if (between_rows_ratio(best, rows, row_pairs(rows, false), u, v, tol.maxCoeff()) >
@@ -292,6 +305,11 @@ bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, 
   r.report.fold = shape.fold;
   r.report.box_excursion = shape.box_excursion;
   r.report.row_gap = shape.row_gap;
+  if (closed) {  // each row starts at its seam corner (aligned_fit.h composes these)
+    r.report.seams.assign(rows.size(), RowSeam{});
+    for (std::size_t j = 0; j < rows.size(); ++j)
+      r.report.seams[j].shift = static_cast<long>(m.seam[j]);
+  }
   r.report.knots = KnotRule::kCorners;
   r.report.parametrization = Parametrization::kChord;
   return true;
