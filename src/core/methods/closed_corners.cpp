@@ -37,7 +37,7 @@ MatchedCorners match_closed_corners(const Rows& rows,
         first_corner = c;
       }
   if (first == n) return m;
-  std::vector<std::size_t> seam(n, 0);
+  std::vector<std::size_t> seam(n, 0);   // the seam's point (its corner's, or the nearest)
   std::vector<long> seam_corner(n, -1);  // which of the row's corners is its seam (-1: none)
   seam[first] = corners[first][first_corner].index;
   seam_corner[first] = static_cast<long>(first_corner);
@@ -70,8 +70,12 @@ MatchedCorners match_closed_corners(const Rows& rows,
   if (static_cast<double>(with) < kMinShare * static_cast<double>(n)) return m;
   // 3. The other corners, counted from the seam, matched as an open row's.
   std::vector<std::vector<RowCorner>> rest(n);
+  std::vector<double> seam_at(n, 0.0);
   for (std::size_t j = 0; j < n; ++j) {
-    const double f0 = normalized_positions(rows[j], Parametrization::kChord, true)[seam[j]];
+    const double f0 = seam_corner[j] >= 0
+                          ? corners[j][static_cast<std::size_t>(seam_corner[j])].fraction
+                          : normalized_positions(rows[j], Parametrization::kChord, true)[seam[j]];
+    seam_at[j] = f0;
     for (std::size_t c = 0; c < corners[j].size(); ++c) {
       if (static_cast<long>(c) == seam_corner[j]) continue;
       RowCorner k = corners[j][c];
@@ -87,7 +91,7 @@ MatchedCorners match_closed_corners(const Rows& rows,
     m.common.clear();
     m.fraction.assign(n, {});
   }
-  m.seam = std::move(seam);
+  m.seam = std::move(seam_at);
   return m;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "banded_lsq.h"
 #include "basis_knots.h"
@@ -11,6 +12,7 @@
 #include "deviation.h"
 #include "sfit/fold_check.h"
 #include "sfit/knot_vector.h"
+#include "sfit/parametrization.h"
 
 namespace sfit::detail {
 namespace {
@@ -305,11 +307,25 @@ bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, 
   r.report.fold = shape.fold;
   r.report.box_excursion = shape.box_excursion;
   r.report.row_gap = shape.row_gap;
-  if (closed) {  // each row starts at its seam corner (aligned_fit.h composes these)
+  if (closed) {  // each row starts at its seam corner (aligned_fit.h composes these): the
+    // point at or before it and the fraction of the spacing to the next (docs/seams.md)
     r.report.seams.assign(rows.size(), RowSeam{});
-    for (std::size_t j = 0; j < rows.size(); ++j)
-      r.report.seams[j].shift = static_cast<long>(m.seam[j]);
+    for (std::size_t j = 0; j < rows.size(); ++j) {
+      const std::vector<double> f = normalized_positions(rows[j], Parametrization::kChord, true);
+      const std::size_t i = static_cast<std::size_t>(
+          std::max<long>(0, std::upper_bound(f.begin(), f.end(), m.seam[j]) - f.begin() - 1));
+      const double next = i + 1 < f.size() ? f[i + 1] : 1.0;
+      r.report.seams[j].shift = static_cast<long>(i);
+      r.report.seams[j].offset = next > f[i] ? (m.seam[j] - f[i]) / (next - f[i]) : 0.0;
+    }
   }
+  // The search's reason stands (of its surface); what replaced it follows.
+  const long kept = static_cast<long>(r.surface.count_u) * r.surface.count_v;
+  const long points = static_cast<long>(rows.total_points());
+  r.report.stop_reason += "; then corner knots: " + std::to_string(r.surface.count_u) + " x " +
+                          std::to_string(r.surface.count_v) + " control points, " +
+                          (kept < points ? "below" : "not below") + " the " +
+                          std::to_string(points) + " points";
   r.report.knots = KnotRule::kCorners;
   r.report.parametrization = Parametrization::kChord;
   return true;

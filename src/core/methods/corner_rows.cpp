@@ -16,6 +16,7 @@ constexpr double kWindowInT = 8.0;       // the window, at least this many T (no
 constexpr double kMatchReach = 0.12;     // a corner's chord fraction off the mean, at most
 constexpr double kNeighbourJump = 0.15;  // a corner's chord fraction between neighbour rows
 constexpr double kMinShare = 0.5;        // rows with the common count, and with each corner
+constexpr double kParallel = 1e-6;       // sin^2 of the angle below which two lines are parallel
 
 // The point at arc length t along the polyline `row` (cumulative lengths `s`; closed: s has
 // the closing segment's end too, and t wraps around the length s.back()).
@@ -57,6 +58,23 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol,
     const double h = std::sqrt(std::max(0.0, n1 * n1 - along * along));
     return turn >= kCornerAngle && h >= off;
   };
+  // Where a closed row's corner lies between its points: the lines from the window's ends
+  // through the points either side of point i meet there (nearest to each other); its arc
+  // length from point i - 1, within the two spacings around point i. A sharp corner between
+  // samples, creased at a sample instead, leaves the sample off the far side's line.
+  auto between_points = [&](std::size_t i) {
+    const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
+    const double s0 = i == 0 ? s[n - 1] - len : s[before], s1 = s[i + 1];
+    const Point a = at_arc(row, s, s[i] - w, true), b = at_arc(row, s, s[i] + w, true);
+    const Point p = row[before], q = row[after], d1 = p - a, d2 = b - q, r = p - q;
+    const double aa = d1.dot(d1), bb = d1.dot(d2), cc = d2.dot(d2), dd = d1.dot(r), ee = d2.dot(r),
+                 den = aa * cc - bb * bb;
+    if (!(den > kParallel * aa * cc)) return s[i];  // the two lines about parallel: keep
+    const Point c =
+        0.5 * (p + d1 * ((bb * ee - cc * dd) / den) + q + d2 * ((aa * ee - bb * dd) / den));
+    const double at = std::clamp(s0 + (c - p).norm(), s0, s1);
+    return at < 0 ? at + len : at >= len ? at - len : at;
+  };
   // A closed row is walked from a point that does not turn, so no run straddles its start.
   std::size_t from = 1, steps = n - 2;
   if (closed) {
@@ -72,7 +90,7 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol,
   auto close_run = [&] {
     if (!in_run) return;
     in_run = false;
-    const RowCorner c{s[at] / len, best, at};
+    const RowCorner c{(closed ? between_points(at) : s[at]) / len, best, at};
     if (!out.empty() && std::abs(c.fraction - out.back().fraction) * len < w) {
       if (c.turn > out.back().turn) out.back() = c;  // two runs within a window: the sharper
     } else {
@@ -195,8 +213,8 @@ std::vector<double> corner_parameters(const Rows& rows, const MatchedCorners& m)
   for (std::size_t j = 0; j < rows.size(); ++j) {
     for (std::size_t k = 0; k < count; ++k) x[k + 1] = m.fraction[j][k];
     std::vector<double> f = normalized_positions(rows[j], Parametrization::kChord, closed);
-    if (closed) {  // counted from the seam: its point at 0, the one before it just below 1
-      const double f0 = f[m.seam[j]];
+    if (closed) {  // counted from the seam (its corner, between two points or at one)
+      const double f0 = m.seam[j];
       for (double& t : f) t = t >= f0 ? t - f0 : std::min(1.0, t - f0 + 1);
     }
     for (double t : f) {

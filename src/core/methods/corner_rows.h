@@ -29,7 +29,8 @@
 
 namespace sfit::detail {
 
-/// One corner of a row: its chord fraction (0 ... 1), how far it turns (radians), its point.
+/// One corner of a row: its chord fraction (0 ... 1; closed rows: where the lines either side
+/// meet, between two points), how far it turns (radians), its point (the sharpest turning).
 struct RowCorner {
   double fraction = 0;
   double turn = 0;
@@ -44,12 +45,13 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol,
 
 /// Matched corners: fraction[j][k] is row j's k-th corner (detected or interpolated),
 /// common[k] = U_k their mean; empty when the rows have no consistent corners. Closed rows
-/// (closed_corners.h): seam[j] is the index of row j's point at u = 0 (its seam corner, every
-/// fraction counted from it), and common may be empty (the seam the only corner).
+/// (closed_corners.h): seam[j] is row j's chord fraction (of its closed length) at u = 0 (its
+/// seam corner, every other fraction counted from it), and common may be empty (the seam the only
+/// corner).
 struct MatchedCorners {
   std::vector<std::vector<double>> fraction;
   std::vector<double> common;
-  std::vector<std::size_t> seam;
+  std::vector<double> seam;
   bool empty() const { return common.empty() && seam.empty(); }
 };
 
