@@ -203,7 +203,10 @@ bool corner_knots_apply(const FitOptions& o) {
          o.tolerance.minCoeff() > 0;
 }
 
-bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, FitResult& r) {
+namespace {
+
+// corner_knots() with the corners at their points or (`between`, closed rows) between them.
+bool corner_knots_at(const Rows& rows, int threads, bool between, FitResult& r) {
   const Surface& uni = r.surface;
   const Point tol = r.report.tolerance;
   if (uni.periodic_v || !r.report.within_tolerance || !(tol.minCoeff() > 0) || rows.size() < 2 ||
@@ -213,7 +216,8 @@ bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, 
   // seam at a common corner (closed_corners.h).
   const bool closed = uni.periodic_u;
   std::vector<std::vector<RowCorner>> found(rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) found[j] = row_corners(rows[j], tol, closed);
+  for (std::size_t j = 0; j < rows.size(); ++j)
+    found[j] = row_corners(rows[j], tol, closed, between);
   const MatchedCorners m = closed ? match_closed_corners(rows, found) : match_corners(found);
   if (m.empty()) return false;
   const std::vector<double> u = corner_parameters(rows, m);
@@ -329,6 +333,23 @@ bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, 
   r.report.knots = KnotRule::kCorners;
   r.report.parametrization = Parametrization::kChord;
   return true;
+}
+
+}  // namespace
+
+bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, FitResult& r) {
+  if (!r.surface.periodic_u) return corner_knots_at(rows, threads, false, r);
+  // Closed rows: the corners at their points, and between points where the lines either side
+  // meet (a sharp corner between samples); the smaller surface.
+  FitResult at = r, between = r;
+  const bool a = corner_knots_at(rows, threads, false, at);
+  const bool b = corner_knots_at(rows, threads, true, between);
+  const auto count = [](const FitResult& x) { return long(x.surface.count_u) * x.surface.count_v; };
+  if (b && (!a || count(between) < count(at)))
+    r = std::move(between);
+  else if (a)
+    r = std::move(at);
+  return a || b;
 }
 
 }  // namespace sfit::detail

@@ -33,7 +33,8 @@ Point at_arc(std::span<const Point> row, const std::vector<double>& s, double t,
 
 }  // namespace
 
-std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol, bool closed) {
+std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol, bool closed,
+                                   bool between) {
   std::vector<RowCorner> out;
   const std::size_t n = row.size();
   if (n < 8 || !(tol.minCoeff() > 0)) return out;
@@ -90,7 +91,7 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol,
   auto close_run = [&] {
     if (!in_run) return;
     in_run = false;
-    const RowCorner c{(closed ? between_points(at) : s[at]) / len, best, at};
+    const RowCorner c{(closed && between ? between_points(at) : s[at]) / len, best, at};
     if (!out.empty() && std::abs(c.fraction - out.back().fraction) * len < w) {
       if (c.turn > out.back().turn) out.back() = c;  // two runs within a window: the sharper
     } else {

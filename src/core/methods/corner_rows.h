@@ -29,8 +29,8 @@
 
 namespace sfit::detail {
 
-/// One corner of a row: its chord fraction (0 ... 1; closed rows: where the lines either side
-/// meet, between two points), how far it turns (radians), its point (the sharpest turning).
+/// One corner of a row: its chord fraction (0 ... 1), how far it turns (radians), its point
+/// (the sharpest turning).
 struct RowCorner {
   double fraction = 0;
   double turn = 0;
@@ -39,9 +39,11 @@ struct RowCorner {
 
 /// The corners of a row (chord fractions ascending), at per-axis tolerance `tol`; `closed`:
 /// the row closes from its last point to its first (fractions of the closed length, the
-/// windows wrapping around).
+/// windows wrapping around); `between` (closed rows): each corner's fraction where the lines
+/// either side of its point meet, between two points (a sharp corner between samples), else
+/// its point's.
 std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol,
-                                   bool closed = false);
+                                   bool closed = false, bool between = false);
 
 /// Matched corners: fraction[j][k] is row j's k-th corner (detected or interpolated),
 /// common[k] = U_k their mean; empty when the rows have no consistent corners. Closed rows
