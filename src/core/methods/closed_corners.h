@@ -4,7 +4,8 @@
 // PURPOSE  Closed sections with corners (blades with a blunt or sharp trailing edge, ducts)
 //          put their corners at a different place in every row; a closed surface with a crease
 //          at each needs the k-th corner of every row at one u, and a seam somewhere.
-// METHOD   1. Each row's corners, its windows wrapping around (row_corners(), closed).
+// METHOD   1. Each row's corners, its windows wrapping around (row_corners(), closed), at
+//             their points or between points (corner_knots() fits both, keeps the smaller).
 //          2. The seam: on a common corner. The sharpest corner of all rows starts it; from
 //             that row outwards, each row's seam is its corner nearest (in space) to the
 //             previous row's seam, within kSeamReach of the row's length; a row with none
