@@ -16,6 +16,8 @@ constexpr double kWindowInT = 8.0;       // the window, at least this many T (no
 constexpr double kMatchReach = 0.12;     // a corner's chord fraction off the mean, at most
 constexpr double kNeighbourJump = 0.15;  // a corner's chord fraction between neighbour rows
 constexpr double kMinShare = 0.5;        // rows with the common count, and with each corner
+constexpr double kSharpWindow = 0.5;     // closed rows: the corner's turning within this share
+constexpr double kSharpShare = 0.75;     // of the window, at least this share of the whole
 constexpr double kParallel = 1e-6;       // sin^2 of the angle below which two lines are parallel
 
 // The point at arc length t along the polyline `row` (cumulative lengths `s`; closed: s has
@@ -57,7 +59,16 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol,
     const double nab = ab.norm();
     const double along = nab > 0 ? d1.dot(ab) / nab : 0.0;  // off the chord a-b: h
     const double h = std::sqrt(std::max(0.0, n1 * n1 - along * along));
-    return turn >= kCornerAngle && h >= off;
+    if (!(turn >= kCornerAngle && h >= off)) return false;
+    if (!closed) return true;
+    // A closed row's corner turns within half the window nearly as much (a smooth lobe turns in
+    // proportion to the window: no crease goes there).
+    const Point c = at_arc(row, s, s[i] - kSharpWindow * w, true),
+                e = at_arc(row, s, s[i] + kSharpWindow * w, true);
+    const Point e1 = row[i] - c, e2 = e - row[i];
+    const double m1 = e1.norm(), m2 = e2.norm();
+    return m1 > 0 && m2 > 0 &&
+           std::acos(std::clamp(e1.dot(e2) / (m1 * m2), -1.0, 1.0)) >= kSharpShare * turn;
   };
   // Where a closed row's corner lies between its points: the lines from the window's ends
   // through the points either side of point i meet there (nearest to each other); its arc
