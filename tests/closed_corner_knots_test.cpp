@@ -2,7 +2,8 @@
 // (its windows wrapping around its start), the default fit on a generated duct of
 // rounded-rectangle sections started at random points (fewer control points than points and
 // than uniform knots, every point within T by an independent evaluation, no fold, the surface
-// closed with a crease at the seam corner), and smooth closed rows unchanged.
+// closed with a crease at the seam corner: first and last control-point columns equal), and
+// smooth closed rows unchanged.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -109,18 +110,17 @@ TEST(ClosedCornerKnots, CorneredDuctFitsBelowItsPointsAndStaysClosed) {
   const Point d = test::reference_deviation(r, rows);
   for (int a = 0; a < 3; ++a) EXPECT_LE(d[a], o.tolerance[a]);
   EXPECT_EQ(r.report.fold, 0.0);
-  // Closed: periodic in u, the seam a crease (a degree-fold knot at 0), and the surface meets
-  // itself there: its first and last columns coincide.
-  ASSERT_TRUE(r.surface.periodic_u);
-  std::vector<double> b;
-  std::vector<int> m;
-  r.surface.knots_u.breaks(b, m);
-  EXPECT_EQ(m.front(), r.surface.degree_u);
+  // Closed: on clamped u knots whose first and last control-point columns are equal (the seam
+  // a crease, a degree-fold knot inside: the ends have degree + 1), the report's closed flag
+  // true, and the surface meets itself at the seam.
+  EXPECT_TRUE(r.report.closed_u);
+  ASSERT_FALSE(r.surface.periodic_u);
+  for (int j = 0; j < r.surface.count_v; ++j)
+    EXPECT_EQ(r.surface.at(0, j), r.surface.at(r.surface.count_u - 1, j)) << j;
   const double end = r.surface.u_end();
   for (double v : {0.0, 0.3, 0.7, 1.0}) {
     const double at = v * r.surface.v_end();
-    const Point a = r.surface.evaluate(0, at), e = r.surface.evaluate(std::nextafter(end, 0), at);
-    EXPECT_LE((a - e).norm(), 1e-9) << v;
+    EXPECT_LE((r.surface.evaluate(0, at) - r.surface.evaluate(end, at)).norm(), 1e-12) << v;
   }
   // Each row starts (u = 0) at its seam corner, which the report's seams name: after the
   // point they name (or at it) the row's smallest u.

@@ -205,6 +205,31 @@ bool corner_knots_apply(const FitOptions& o) {
 
 namespace {
 
+// The periodic surface `s` (u knots of `cb`, closed) as the same surface on clamped u knots:
+// the seam's degree-fold knot makes it C^0 there, so it is the open surface whose first and
+// last control-point columns are both the seam's column (the one basis function that is 1 at
+// u = 0). Written so, the CAD formats and viewers read a closed surface with a crease at its
+// seam as every other clamped one; the report's "closed" stays true.
+Surface clamped(const Surface& s, CornerBreaks cb) {
+  const int p = s.degree_u, nu = s.count_u, nv = s.count_v;
+  std::vector<double> N(static_cast<std::size_t>(p + 1));
+  const int f = eval_basis(s.knots_u, p, nu, true, 0.0, N.data());
+  int seam = f;
+  for (int a = 0; a <= p; ++a)
+    if (N[static_cast<std::size_t>(a)] > N[static_cast<std::size_t>(seam - f)]) seam = f + a;
+  cb.closed = false;
+  const DirectionKnots d = cb.knots();
+  Surface o = s;
+  o.periodic_u = false;
+  o.count_u = d.count;
+  o.knots_u = KnotVector();
+  o.set_knots_u(d.knots);
+  o.control.resize(static_cast<std::size_t>(d.count) * nv);
+  for (int i = 0; i < d.count; ++i)
+    for (int j = 0; j < nv; ++j) o.at(i, j) = s.at((seam + i) % nu, j);
+  return o;
+}
+
 // corner_knots() with the corners at their points or (`between`, closed rows) between them.
 bool corner_knots_at(const Rows& rows, int threads, bool between, FitResult& r) {
   const Surface& uni = r.surface;
@@ -302,6 +327,7 @@ bool corner_knots_at(const Rows& rows, int threads, bool between, FitResult& r) 
   if (between_rows_ratio(best, rows, row_pairs(rows, false), u, v, tol.maxCoeff()) >
       kBetweenRowsLimit)
     return false;
+  if (closed) best = clamped(best, cb);
   r.surface = std::move(best);
   r.u = u;
   r.v_points.clear();
@@ -339,6 +365,7 @@ bool corner_knots_at(const Rows& rows, int threads, bool between, FitResult& r) 
 
 bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, FitResult& r) {
   if (!r.surface.periodic_u) return corner_knots_at(rows, threads, false, r);
+  // (Both attempts start from the search's periodic surface; the kept one comes out clamped.)
   // Closed rows: the corners at their points, and between points where the lines either side
   // meet (a sharp corner between samples); the smaller surface.
   FitResult at = r, between = r;
