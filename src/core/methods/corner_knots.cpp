@@ -317,7 +317,8 @@ bool corner_knots_at(const Rows& rows, int threads, bool between, FitResult& r) 
     best = s;
   }
   // The count, the check, the fold and the calm between rows decide.
-  if (static_cast<long>(best.count_u) * best.count_v >= budget) return false;
+  // (Closed: counted as written, clamped, the seam's column twice.)
+  if (static_cast<long>(best.count_u + (closed ? 1 : 0)) * best.count_v >= budget) return false;
   const DeviationCheck c = check_deviation(best, rows, u, v, tol, r.report.roundoff, threads);
   if (!c.within) return false;
   const BoundingBox box = bounding_box(rows);
