@@ -270,7 +270,7 @@ def main():
                 print(f"{name:<20} {tol:>6g} {npts:>8} {cu:>5} x {cv:<5} {cu * cv / npts:>7.3f} "
                       f"{r['parameters']:>12} {str(r['within_tolerance']):>5} "
                       f"{r['fold']:>8.2g} {dt:>7.2f}  "
-                      f"{claim(r['stop_reason'])}")
+                      f"{claim(r['stop_reason']) if cu * cv > npts else ''}")
                 if a.stop:
                     print(f"    stop: {r['stop_reason'][:160]}")
                 sys.stdout.flush()

@@ -67,11 +67,14 @@ struct Case {
 // Recorded with the code before the fit driver, the same on this machine's g++ 12 -O2 build.
 // A digest is of bits: another compiler or flags may round differently and must re-record.
 // Re-recorded since: the default on bent_tube when the row rules' normal equations became
-// factorised as a band (2026-12-03; the same counts, control points differing at round-off).
+// factorised as a band (2026-12-03; the same counts, control points differing at round-off);
+// the default on iea3p4mw_blade_ragged9 when closed rows got corner knots (2026-12-03: 36 x 9
+// on uniform knots -> 12 x 9 with a crease at the trailing edge; again with the open rows' corner
+// changes beside it, docs/method.md 7.13: the same 12 x 9, its bits differing).
 const Case kCases[] = {
     {"height_field_small.rows", false, 1e-2, "d75dbc0c85d04540", "fb2efc3cecef9f02"},
     {"bent_tube.rows", true, 1e-3, "6ee0e5cb741de96a", "32d4c5d87fb93467"},
-    {"iea3p4mw_blade_ragged9.rows", true, 1e-3, "eccc00c3b622e9f3", "aa8639906c71c66f"},
+    {"iea3p4mw_blade_ragged9.rows", true, 1e-3, "eccc00c3b622e9f3", "15bc5a849ee626be"},
     {"ship_px121_stations.rows", false, 1e-3, "a4076018fe2182b0", "277c47b8f556177d"},
 };
 

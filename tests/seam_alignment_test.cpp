@@ -188,7 +188,8 @@ void expect_same_surface_from_copies(const ClosedSet& set, bool reverse, FitMeth
       keep.seam = SeamMode::kKeep;
       keep.orient = OrientMode::kKeep;
       const FitResult k = fit_surface(copy, keep);
-      EXPECT_TRUE(k.report.seams.empty());
+      // As given, unless corner knots moved each row's start onto its seam corner.
+      EXPECT_TRUE(k.report.seams.empty() || k.report.knots == KnotRule::kCorners);
       std::printf("%s%s, %s: aligned %.2f T (%ld control points, original %ld), as given %.1f T\n",
                   set.name, reverse ? " reversed" : "", std::string(to_string(method)).c_str(),
                   gap / T, control_points(f), control_points(original),

@@ -26,6 +26,21 @@ std::vector<double> sample_parameters(double end, int n, bool periodic) {
   return t;
 }
 
+// Whether the surface closes on itself along u (along v with `along_v`): periodic, or clamped
+// with its first and last control-point columns (rows) equal, as closed corner knots write a
+// crease at the seam (docs/method.md 7.13). The mesh then wraps there: one seam, no boundary.
+bool wraps(const Surface& s, bool along_v) {
+  if (along_v ? s.periodic_v : s.periodic_u) return true;
+  const int nu = s.count_u, nv = s.count_v;
+  if (nu < 2 || nv < 2 || s.control.size() != static_cast<std::size_t>(nu) * nv) return false;
+  for (int k = 0; k < (along_v ? nu : nv); ++k) {
+    const std::size_t first = along_v ? static_cast<std::size_t>(k) * nv : k;
+    const std::size_t last = along_v ? first + nv - 1 : static_cast<std::size_t>(nu - 1) * nv + k;
+    if (s.control[first] != s.control[last]) return false;
+  }
+  return true;
+}
+
 [[noreturn]] void bad_density(const std::string& what, int n) {
   throw Error(ErrorCode::kUsage, what, Place{.option = "--mesh-density"}, {static_cast<double>(n)});
 }
@@ -93,10 +108,11 @@ Density choose_density(const Surface& s, double chord_in, int max_samples, doubl
     return static_cast<int>(std::min(n, static_cast<double>(max_samples)));
   };
   Density d;
-  d.samples_u = count(cu, s.periodic_u);
-  d.samples_v = count(cv, s.periodic_v);
-  const double hu2 = s.u_end() / (s.periodic_u ? d.samples_u : d.samples_u - 1);
-  const double hv2 = s.v_end() / (s.periodic_v ? d.samples_v : d.samples_v - 1);
+  const bool wu = wraps(s, false), wv = wraps(s, true);
+  d.samples_u = count(cu, wu);
+  d.samples_v = count(cv, wv);
+  const double hu2 = s.u_end() / (wu ? d.samples_u : d.samples_u - 1);
+  const double hv2 = s.v_end() / (wv ? d.samples_v : d.samples_v - 1);
   d.bound = (hu2 * hu2 * muu + 2 * hu2 * hv2 * muv + hv2 * hv2 * mvv) / 8 * f.size;
   return d;
 }
@@ -109,8 +125,9 @@ Mesh tessellate(const Surface& s, int samples_u, int samples_v) {
                       " ... 100000 samples, got " + std::to_string(n),
                   n);
   };
-  check(samples_u, s.periodic_u, "u");
-  check(samples_v, s.periodic_v, "v");
+  const bool wu = wraps(s, false), wv = wraps(s, true);
+  check(samples_u, wu, "u");
+  check(samples_v, wv, "v");
   if (static_cast<double>(samples_u) * samples_v > 5e7)
     throw Error(ErrorCode::kUsage,
                 "mesh of " + std::to_string(samples_u) + " x " + std::to_string(samples_v) +
@@ -120,10 +137,10 @@ Mesh tessellate(const Surface& s, int samples_u, int samples_v) {
   Mesh m;
   m.samples_u = samples_u;
   m.samples_v = samples_v;
-  m.periodic_u = s.periodic_u;
-  m.periodic_v = s.periodic_v;
-  m.u = sample_parameters(s.u_end(), samples_u, s.periodic_u);
-  m.v = sample_parameters(s.v_end(), samples_v, s.periodic_v);
+  m.periodic_u = wu;
+  m.periodic_v = wv;
+  m.u = sample_parameters(s.u_end(), samples_u, wu);
+  m.v = sample_parameters(s.v_end(), samples_v, wv);
   const std::size_t n = static_cast<std::size_t>(samples_u) * samples_v;
   m.vertices.resize(n);
   m.normals.resize(n);

@@ -97,6 +97,15 @@ std::string read_text(const std::string& path) {
 
 class CadRoundTrip : public ::testing::TestWithParam<Format> {};
 
+// Open u whose first and last control-point columns are equal: a closed surface on clamped
+// knots (corner knots on closed rows, docs/method.md 7.13).
+bool closed_clamped_u(const Surface& s) {
+  if (s.periodic_u) return false;
+  for (int j = 0; j < s.count_v; ++j)
+    if (s.at(0, j) != s.at(s.count_u - 1, j)) return false;
+  return true;
+}
+
 void check_case(const FittedCase& c, Format f, const std::string& dir) {
   SCOPED_TRACE(c.name);
   const Surface& s = c.fit.surface;
@@ -117,13 +126,17 @@ void check_case(const FittedCase& c, Format f, const std::string& dir) {
   EXPECT_LE(dev, f == Format::kStep ? 1e-9 : 1e-8);
   std::printf("[ measure  ] %-28s %s max deviation %.3g of the diagonal\n", c.name.c_str(),
               f == Format::kStep ? "STEP" : "IGES", dev);
-  // Closed directions come back closed, and periodic, so a CAD kernel sees no seam.
-  EXPECT_EQ(b.surface->IsUClosed(), s.periodic_u);
+  // Closed directions come back closed, and periodic, so a CAD kernel sees no seam; a closed
+  // u on clamped knots (corner knots on closed rows: the first and last columns one, a crease
+  // at the seam) too, its two equal columns read back as one.
+  const bool clamped_closed = closed_clamped_u(s);
+  const bool closed_u = s.periodic_u || clamped_closed;
+  EXPECT_EQ(b.surface->IsUClosed(), closed_u);
   EXPECT_EQ(b.surface->IsVClosed(), s.periodic_v);
-  EXPECT_EQ(b.surface->IsUPeriodic(), s.periodic_u);
+  EXPECT_EQ(b.surface->IsUPeriodic(), closed_u);
   EXPECT_EQ(b.surface->IsVPeriodic(), s.periodic_v);
   // The same poles: distinct ones in a periodic direction.
-  EXPECT_EQ(b.surface->NbUPoles(), s.count_u);
+  EXPECT_EQ(b.surface->NbUPoles(), s.count_u - (clamped_closed ? 1 : 0));
   EXPECT_EQ(b.surface->NbVPoles(), s.count_v);
 }
 
@@ -135,8 +148,8 @@ TEST_P(CadRoundTrip, BundledOpenAndClosedSurfacesReadBackExactly) {
   for (const auto* c : cases) {
     check_case(*c, GetParam(), dir);
     const Surface& s = c->fit.surface;
-    open |= !s.periodic_u && !s.periodic_v;
-    u |= s.periodic_u && !s.periodic_v;
+    open |= !s.periodic_u && !closed_clamped_u(s) && !s.periodic_v;
+    u |= (s.periodic_u || closed_clamped_u(s)) && !s.periodic_v;
     v |= !s.periodic_u && s.periodic_v;
     uv |= s.periodic_u && s.periodic_v;
   }

@@ -58,7 +58,7 @@ TEST(MeshFields, GridDeviationInterpolatesTheDataLinearly) {
         ulo = std::max(ulo, *a);
         uhi = std::min(uhi, *b);
       }
-    const bool linear_u = !s.periodic_u;
+    const bool linear_u = !m.periodic_u;  // the mesh wraps where the surface closes
     for (std::size_t i = 0; i < d.points.size(); ++i)
       d.deviation[i] = Point(linear_u ? d.u[i] : 0.0, 2 * d.v[i], 1);
     const std::vector<Point> lin = grid_deviation(s, m, d, c->rows);

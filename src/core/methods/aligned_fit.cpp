@@ -45,7 +45,17 @@ void restore_original_order(FitResult& fit, const Rows& original, const RowAlign
     r.worst_index = static_cast<long>(
         source_index(a.rows[j], original[j].size(), static_cast<std::size_t>(r.worst_index)));
   }
-  r.seams = a.rows;
+  // A method that moved the seams itself (corner knots on closed rows: u = 0 at a corner) set
+  // them on the aligned rows; composed with the alignment, they name original points.
+  std::vector<RowSeam> seams = a.rows;
+  if (r.seams.size() == seams.size())
+    for (std::size_t j = 0; j < seams.size(); ++j) {
+      const long n = static_cast<long>(original[j].size()), k = r.seams[j].shift;
+      RowSeam& s = seams[j];
+      s.shift = ((s.reversed ? s.shift - k : s.shift + k) % n + n) % n;
+      s.offset = r.seams[j].offset;
+    }
+  r.seams = std::move(seams);
 }
 
 }  // namespace sfit::detail

@@ -19,7 +19,8 @@ std::vector<double> seam_offsets(const RowAlignment& a, bool closed_u);
 void shift_positions(std::vector<double>& f, double offset);
 
 /// `fit` was made on apply_alignment(original, a): puts its u back in the order of
-/// original.points(), names the worst point by its original index and records the seams.
+/// original.points(), names the worst point by its original index and records the seams
+/// (composed with seams the method set on the aligned rows, where it set them).
 void restore_original_order(FitResult& fit, const Rows& original, const RowAlignment& a);
 
 }  // namespace sfit::detail

@@ -8,10 +8,12 @@
 #include "banded_lsq.h"
 #include "basis_knots.h"
 #include "between_rows.h"
+#include "closed_corners.h"
 #include "corner_rows.h"
 #include "deviation.h"
 #include "sfit/fold_check.h"
 #include "sfit/knot_vector.h"
+#include "sfit/parametrization.h"
 
 namespace sfit::detail {
 namespace {
@@ -30,22 +32,25 @@ struct DirectionKnots {
   int count = 0;
 };
 
-// The u knots: a degree-fold knot at each corner, spans[k] uniform spans in stretch k.
+// The u knots: a degree-fold knot at each corner, spans[k] uniform spans in stretch k; closed
+// (periodic, period 1): a degree-fold knot at 0 too, the seam.
 struct CornerBreaks {
   std::vector<double> corners;  // U_1 ... U_K in (0, 1)
   std::vector<int> spans;       // K + 1 stretches
   int degree = 3;
+  bool closed = false;
   double edge(std::size_t k) const {
     return k == 0 ? 0.0 : k > corners.size() ? 1.0 : corners[k - 1];
   }
   int count() const {
-    int c = degree + 1 + degree * static_cast<int>(corners.size());
+    int c = degree + (closed ? 0 : 1) + degree * static_cast<int>(corners.size());
     for (int s : spans) c += s - 1;
     return c;
   }
   DirectionKnots knots() const {
     std::vector<double> b{0.0};
     std::vector<int> m;
+    if (closed) m.push_back(degree);
     for (std::size_t k = 0; k < spans.size(); ++k) {
       const double a = edge(k), e = edge(k + 1);
       for (int i = 1; i <= spans[k]; ++i) {
@@ -53,7 +58,7 @@ struct CornerBreaks {
         if (k + 1 < spans.size() || i < spans[k]) m.push_back(i == spans[k] ? degree : 1);
       }
     }
-    return {KnotVector::from_breaks(degree, false, b, m), degree, count()};
+    return {KnotVector::from_breaks(degree, closed, b, m), degree, count()};
   }
   std::size_t stretch_of(double t) const {
     return static_cast<std::size_t>(std::upper_bound(corners.begin(), corners.end(), t) -
@@ -67,19 +72,20 @@ std::vector<double> stretch_worst(const Rows& rows, const std::vector<double>& u
                                   const Point& centre, const CornerBreaks& cb, const Point& tol) {
   const DirectionKnots d = cb.knots();
   const int p = d.degree, n = d.count, w = p + 1;
+  const bool per = cb.closed;
   std::vector<double> worst(cb.spans.size(), 0.0), N(static_cast<std::size_t>(w)), buf;
   std::vector<Point> c;
   const int du = p >= 2 ? 2 : 1;
   for (std::size_t j = 0; j < rows.size(); ++j) {
     const auto row = rows[j];
     const double* uj = u.data() + rows.offsets()[j];
-    BandedLeastSquares ls(n, w, false);
+    BandedLeastSquares ls(n, w, per);
     for (std::size_t i = 0; i < row.size(); ++i) {
-      const int f = eval_basis(d.knots, p, n, false, uj[i], N.data());
-      ls.add(f, N.data(), row[i] - centre);
+      const int f = eval_basis(d.knots, p, n, per, uj[i], N.data());
+      ls.add(f % n, N.data(), row[i] - centre);
     }
-    for (int i = 0; i + du < n; ++i) {
-      const int start = std::min(i, std::max(0, n - w));
+    for (int i = 0; i + (per ? 0 : du) < n; ++i) {  // closed: around the wrap too
+      const int start = per ? i : std::min(i, std::max(0, n - w));
       buf.assign(static_cast<std::size_t>(w), 0.0);
       const std::size_t o = static_cast<std::size_t>(i - start);
       buf[o] = 1;
@@ -92,10 +98,10 @@ std::vector<double> stretch_worst(const Rows& rows, const std::vector<double>& u
       return worst;
     }
     for (std::size_t i = 0; i < row.size(); ++i) {
-      const int f = eval_basis(d.knots, p, n, false, uj[i], N.data());
+      const int f = eval_basis(d.knots, p, n, per, uj[i], N.data());
       Point s = Point::Zero();
       for (int a = 0; a <= p; ++a)
-        s += N[static_cast<std::size_t>(a)] * c[static_cast<std::size_t>(f + a)];
+        s += N[static_cast<std::size_t>(a)] * c[static_cast<std::size_t>((f + a) % n)];
       const std::size_t k = cb.stretch_of(uj[i]);
       const double miss = max_axis_ratio(s + centre - row[i], tol);
       worst[k] = std::max(worst[k], miss);
@@ -119,12 +125,15 @@ DirectionKnots uniform_v(int degree, int count, double end) {
 // term along u (stride nv) and v, into `s` (data coordinates). Control point (i, j) is unknown
 // i nv + j; the equations go into the banded Givens QR in the order of their first unknown,
 // so each one stops rotating at the first row of R still empty (rows taken in the data's
-// order fill R ahead of them and cost the band's width times the unknowns each).
+// order fill R ahead of them and cost the band's width times the unknowns each). A periodic
+// u (closed rows): u's wrap (i mod nu) is the cyclic band's (mod nu nv), held by
+// BandedLeastSquares in a dense tail.
 bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
                   const Point& centre, const DirectionKnots& du, const DirectionKnots& dv,
                   Surface& s) {
   const int p = du.degree, q = dv.degree, nu = du.count, nv = dv.count;
   const int n = nu * nv, w = std::min(n, p * nv + q + 1);
+  const bool per = du.knots.periodic();
   const int ru = p >= 2 ? 2 : 1, rv = q >= 2 ? 2 : 1;
   // Equations as (first unknown, kind, index): kind 0 a point, 1 u smoothing, 2 v smoothing.
   struct Eq {
@@ -138,30 +147,30 @@ bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vec
   for (std::size_t j = 0; j < rows.size(); ++j) {
     fv[j] = eval_basis(dv.knots, q, nv, false, v[j], Nv.data());
     for (std::size_t k = rows.offsets()[j]; k < rows.offsets()[j + 1]; ++k) {
-      fu[k] = eval_basis(du.knots, p, nu, false, u[k], Nu.data());
+      fu[k] = eval_basis(du.knots, p, nu, per, u[k], Nu.data());
       eqs.push_back({fu[k] * nv + fv[j], 0, k});
     }
   }
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j) {
       const std::size_t at = static_cast<std::size_t>(i * nv + j);
-      if (i + ru < nu) eqs.push_back({i * nv + j, 1, at});
+      if (per || i + ru < nu) eqs.push_back({i * nv + j, 1, at});
       if (j + rv < nv) eqs.push_back({i * nv + j, 2, at});
     }
   std::stable_sort(eqs.begin(), eqs.end(),
                    [](const Eq& a, const Eq& b) { return a.first < b.first; });
-  BandedLeastSquares ls(n, w, false);
+  BandedLeastSquares ls(n, w, per);
   std::vector<double> coef(static_cast<std::size_t>(w));
   std::vector<std::size_t> row_of(rows.total_points());
   for (std::size_t j = 0; j < rows.size(); ++j)
     for (std::size_t k = rows.offsets()[j]; k < rows.offsets()[j + 1]; ++k) row_of[k] = j;
   for (const Eq& e : eqs) {
-    const int start = std::min(e.first, std::max(0, n - w));
-    const std::size_t o = static_cast<std::size_t>(e.first - start);
+    const int start = per ? e.first % n : std::min(e.first, std::max(0, n - w));
+    const std::size_t o = per ? 0 : static_cast<std::size_t>(e.first - start);
     std::fill(coef.begin(), coef.end(), 0.0);
     if (e.kind == 0) {
       const std::size_t j = row_of[e.index];
-      eval_basis(du.knots, p, nu, false, u[e.index], Nu.data());
+      eval_basis(du.knots, p, nu, per, u[e.index], Nu.data());
       eval_basis(dv.knots, q, nv, false, v[j], Nv.data());
       for (int a = 0; a <= p; ++a)
         for (int b = 0; b <= q; ++b) coef[o + static_cast<std::size_t>(a * nv + b)] = Nu[a] * Nv[b];
@@ -182,6 +191,7 @@ bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vec
   s.degree_v = q;
   s.count_u = nu;
   s.count_v = nv;
+  s.periodic_u = per;
   s.set_knots_u(du.knots);
   s.set_knots_v(dv.knots);
   s.control.resize(static_cast<std::size_t>(n));
@@ -192,9 +202,47 @@ bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vec
   return true;
 }
 
-// Steps 1 (parameters) ... 4 and the decision on the matched corners `m`.
-bool fit_on_corners(const Rows& rows, const MatchedCorners& m, int threads, FitResult& r) {
-  const Surface& uni = r.surface;
+}  // namespace
+
+bool corner_knots_apply(const FitOptions& o) {
+  return o.knots == KnotRule::kCorners && o.method == FitMethod::kSurface &&
+         o.parametrization == Parametrization::kAuto && !o.counts && !o.closed_v &&
+         o.tolerance.minCoeff() > 0;
+}
+
+namespace {
+
+// The periodic surface `s` (u knots of `cb`, closed) as the same surface on clamped u knots:
+// the seam's degree-fold knot makes it C^0 there, so it is the open surface whose first and
+// last control-point columns are both the seam's column (the one basis function that is 1 at
+// u = 0). Written so, the CAD formats and viewers read a closed surface with a crease at its
+// seam as every other clamped one; the report's "closed" stays true.
+Surface clamped(const Surface& s, CornerBreaks cb) {
+  const int p = s.degree_u, nu = s.count_u, nv = s.count_v;
+  std::vector<double> N(static_cast<std::size_t>(p + 1));
+  const int f = eval_basis(s.knots_u, p, nu, true, 0.0, N.data());
+  int seam = f;
+  for (int a = 0; a <= p; ++a)
+    if (N[static_cast<std::size_t>(a)] > N[static_cast<std::size_t>(seam - f)]) seam = f + a;
+  cb.closed = false;
+  const DirectionKnots d = cb.knots();
+  Surface o = s;
+  o.periodic_u = false;
+  o.count_u = d.count;
+  o.knots_u = KnotVector();
+  o.set_knots_u(d.knots);
+  o.control.resize(static_cast<std::size_t>(d.count) * nv);
+  for (int i = 0; i < d.count; ++i)
+    for (int j = 0; j < nv; ++j) o.at(i, j) = s.at((seam + i) % nu, j);
+  return o;
+}
+
+// Steps 1 (parameters) ... 4 and the decision on the matched corners `m` (`closed`: of
+// closed rows, with a seam at a common corner).
+bool fit_on_corners(const Rows& rows, const MatchedCorners& m, bool closed, int threads,
+                    FitResult& r) {
+  const Surface& uni = r.surface;  // (replaced at the end: its counts kept for the report)
+  const int uni_u = uni.count_u, uni_v = uni.count_v;
   const Point tol = r.report.tolerance;
   const std::vector<double> u = corner_parameters(rows, m);
   const std::vector<double>& v = r.v;
@@ -209,7 +257,9 @@ bool fit_on_corners(const Rows& rows, const MatchedCorners& m, int threads, FitR
   CornerBreaks cb;
   cb.corners = m.common;
   cb.degree = p;
+  cb.closed = closed;
   cb.spans.assign(m.common.size() + 1, 1);
+  while (cb.count() < p + 1) ++cb.spans[0];  // closed: a periodic u needs degree + 1
   for (int round = 0;; ++round) {
     if (round >= kMaxRounds || cb.count() >= uni.count_u) return false;
     const std::vector<double> worst = stretch_worst(rows, u, centre, cb, tol);
@@ -255,15 +305,16 @@ bool fit_on_corners(const Rows& rows, const MatchedCorners& m, int threads, FitR
   }
   // Each stretch's spans: one fewer first (the usual case: step 2 was about right), then,
   // where that held, the fewest by bisection (step 2 can overshoot by far: a miss on a crease
-  // grows both stretches beside it).
+  // grows both stretches beside it). A closed u keeps at least degree + 1 control points.
+  auto lower_holds = [&](const CornerBreaks& a) { return a.count() >= p + 1 && holds(a, nv, s); };
   for (std::size_t k = 0; k < cb.spans.size(); ++k) {
     CornerBreaks fewer = cb;
-    if (cb.spans[k] <= 1 || !holds((--fewer.spans[k], fewer), nv, s)) continue;
+    if (cb.spans[k] <= 1 || !lower_holds((--fewer.spans[k], fewer))) continue;
     cb = fewer;
     best = s;
     for (int lo = 1, hi = cb.spans[k]; lo < hi;) {
       fewer.spans[k] = (lo + hi) / 2;
-      if (holds(fewer, nv, s)) {
+      if (lower_holds(fewer)) {
         hi = fewer.spans[k];
         cb = fewer;
         best = s;
@@ -277,16 +328,18 @@ bool fit_on_corners(const Rows& rows, const MatchedCorners& m, int threads, FitR
     best = s;
   }
   // The count, the check, the fold and the calm between rows decide.
+  // The count (closed: as written, clamped, the seam's column twice), the check, the fold and
+  // the calm between rows decide.
   const BoundingBox box = bounding_box(rows);
   const double fold_limit = kFoldRelative * box.diagonal();
   const RowPairs pairs = row_pairs(rows, false);
   DeviationCheck c;
   ShapeMeasures shape;
   auto fit_for_use = [&](const Surface& f) {
-    if (static_cast<long>(f.count_u) * f.count_v >= budget) return false;
+    if (static_cast<long>(f.count_u + (closed ? 1 : 0)) * f.count_v >= budget) return false;
     c = check_deviation(f, rows, u, v, tol, r.report.roundoff, threads);
     if (!c.within) return false;
-    shape = measure_shape(f, rows, u, v, box, false);
+    shape = measure_shape(f, rows, u, v, box, closed);
     if (fold_measure(f, v) > fold_limit || shape.fold > fold_limit) return false;
     return between_rows_ratio(f, rows, pairs, u, v, tol.maxCoeff()) <= kBetweenRowsLimit;
   };
@@ -307,16 +360,7 @@ bool fit_on_corners(const Rows& rows, const MatchedCorners& m, int threads, FitR
     }
     if (!fit_for_use(best)) return false;  // (c and shape of the surface kept)
   }
-  std::string spans;
-  for (int sp : cb.spans) spans += (spans.empty() ? "" : ", ") + std::to_string(sp);
-  r.report.stop_reason =
-      "corner knots: " + std::to_string(m.common.size()) +
-      " corners matched across the rows, a crease at each; " + spans + " spans between them and " +
-      std::to_string(nv) +
-      " control points across, the fewest found that hold T unfolded; on uniform "
-      "knots the method gave " +
-      std::to_string(uni.count_u) + " x " + std::to_string(uni.count_v);
-  r.report.method = FitMethod::kSurface;
+  if (closed) best = clamped(best, cb);
   r.surface = std::move(best);
   r.u = u;
   r.v_points.clear();
@@ -326,35 +370,76 @@ bool fit_on_corners(const Rows& rows, const MatchedCorners& m, int threads, FitR
   r.report.fold = shape.fold;
   r.report.box_excursion = shape.box_excursion;
   r.report.row_gap = shape.row_gap;
+  if (closed) {  // each row starts at its seam corner (aligned_fit.h composes these): the
+    // point at or before it and the fraction of the spacing to the next (docs/seams.md)
+    r.report.seams.assign(rows.size(), RowSeam{});
+    for (std::size_t j = 0; j < rows.size(); ++j) {
+      const std::vector<double> f = normalized_positions(rows[j], Parametrization::kChord, true);
+      const std::size_t i = static_cast<std::size_t>(
+          std::max<long>(0, std::upper_bound(f.begin(), f.end(), m.seam[j]) - f.begin() - 1));
+      const double next = i + 1 < f.size() ? f[i + 1] : 1.0;
+      r.report.seams[j].shift = static_cast<long>(i);
+      r.report.seams[j].offset = next > f[i] ? (m.seam[j] - f[i]) / (next - f[i]) : 0.0;
+    }
+  }
+  // The report's reason: what made the surface (the search's reason was of its own).
+  const long kept = static_cast<long>(r.surface.count_u) * r.surface.count_v;
+  const long points = static_cast<long>(rows.total_points());
+  std::string spans;
+  for (int sp : cb.spans) spans += (spans.empty() ? "" : ", ") + std::to_string(sp);
+  r.report.stop_reason =
+      "corner knots: " + std::to_string(m.common.size()) + " corners matched across the rows" +
+      (closed ? " besides the seam's" : "") + ", a crease at each; " + spans +
+      " spans between them and " + std::to_string(nv) +
+      " control points across, the fewest found that hold T unfolded: " +
+      std::to_string(r.surface.count_u) + " x " + std::to_string(r.surface.count_v) + ", " +
+      (kept < points ? "below" : "not below") + " the " + std::to_string(points) +
+      " points; on uniform knots the method gave " + std::to_string(uni_u) + " x " +
+      std::to_string(uni_v);
+  r.report.method = FitMethod::kSurface;
   r.report.knots = KnotRule::kCorners;
   r.report.parametrization = Parametrization::kChord;
   return true;
 }
 
-}  // namespace
-
-bool corner_knots_apply(const FitOptions& o) {
-  return o.knots == KnotRule::kCorners && o.method == FitMethod::kSurface &&
-         o.parametrization == Parametrization::kAuto && !o.counts && !o.closed_u && !o.closed_v &&
-         o.tolerance.minCoeff() > 0;
+// Corners found and matched (closed rows: with a seam at a common corner, closed_corners.h),
+// `between`: closed rows' corners between points; then fit_on_corners(). Corners followed from
+// row to row beyond the mean's reach (a bow's) can fold the surface where the mean's own (the
+// rest interpolated) do not: then those are tried.
+bool corner_knots_at(const Rows& rows, int threads, bool between, FitResult& r) {
+  const Surface& uni = r.surface;
+  const Point tol = r.report.tolerance;
+  if (uni.periodic_v || !r.report.within_tolerance || !(tol.minCoeff() > 0) || rows.size() < 2 ||
+      r.v.size() != rows.size())
+    return false;
+  const bool closed = uni.periodic_u;
+  std::vector<std::vector<RowCorner>> found(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j)
+    found[j] = row_corners(rows[j], tol, closed, between);
+  const MatchedCorners m = closed ? match_closed_corners(rows, found) : match_corners(found);
+  if (m.empty()) return false;
+  if (fit_on_corners(rows, m, closed, threads, r)) return true;
+  if (closed || !m.followed) return false;
+  const MatchedCorners near = match_corners(found, false);
+  return !near.empty() && fit_on_corners(rows, near, false, threads, r);
 }
 
+}  // namespace
+
 bool corner_knots(const Rows& rows, const FitOptions& /*options*/, int threads, FitResult& r) {
-  const Point tol = r.report.tolerance;
-  if (r.surface.periodic_u || r.surface.periodic_v || !r.report.within_tolerance ||
-      !(tol.minCoeff() > 0) || rows.size() < 2 || r.v.size() != rows.size())
-    return false;
-  // 1. Corners, matched across the rows (cheap: every set pays this much). Corners followed
-  // from row to row beyond the mean's reach (a bow's) can fold the surface where the mean's
-  // own (the rest interpolated) do not: then those are tried.
-  std::vector<std::vector<RowCorner>> found(rows.size());
-  for (std::size_t j = 0; j < rows.size(); ++j) found[j] = row_corners(rows[j], tol);
-  const MatchedCorners m = match_corners(found);
-  if (m.empty()) return false;
-  if (fit_on_corners(rows, m, threads, r)) return true;
-  if (!m.followed) return false;
-  const MatchedCorners near = match_corners(found, false);
-  return !near.empty() && fit_on_corners(rows, near, threads, r);
+  if (!r.surface.periodic_u) return corner_knots_at(rows, threads, false, r);
+  // (Both attempts start from the search's periodic surface; the kept one comes out clamped.)
+  // Closed rows: the corners at their points, and between points where the lines either side
+  // meet (a sharp corner between samples); the smaller surface.
+  FitResult at = r, between = r;
+  const bool a = corner_knots_at(rows, threads, false, at);
+  const bool b = corner_knots_at(rows, threads, true, between);
+  const auto count = [](const FitResult& x) { return long(x.surface.count_u) * x.surface.count_v; };
+  if (b && (!a || count(between) < count(at)))
+    r = std::move(between);
+  else if (a)
+    r = std::move(at);
+  return a || b;
 }
 
 }  // namespace sfit::detail

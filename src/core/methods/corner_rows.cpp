@@ -10,9 +10,9 @@
 namespace sfit::detail {
 namespace {
 
-constexpr double kCornerWindow = 0.04;      // the window of arc length, a fraction of the row's
-constexpr double kCornerAngle = 0.6;        // radians (34 degrees) of turning within the window
-constexpr double kKinkAngle = 0.35;         // radians (20 degrees): a kink's least turning
+constexpr double kCornerWindow = 0.04;  // the window of arc length, a fraction of the row's
+constexpr double kCornerAngle = 0.6;    // radians (34 degrees) of turning within the window
+constexpr double kKinkAngle = 0.35;     // open rows: radians (20 degrees), a kink's least turning
 constexpr double kKinkConcentration = 0.8;  // its turning within half the window, at least
 constexpr double kGapSpacings = 2.0;        // a segment this many median spacings long: a gap
 constexpr double kCornerOffset = 2.0;       // the corner's distance off the window's chord, in T
@@ -20,22 +20,29 @@ constexpr double kWindowInT = 8.0;          // the window, at least this many T 
 constexpr double kMatchReach = 0.12;        // a corner's chord fraction off the mean, at most
 constexpr double kNeighbourJump = 0.15;     // a corner's chord fraction between neighbour rows
 constexpr double kMinShare = 0.5;           // rows with the common count, and with each corner
+constexpr double kSharpWindow = 0.5;        // closed rows: the corner's turning within this share
+constexpr double kSharpShare = 0.75;        // of the window, at least this share of the whole
+constexpr double kParallel = 1e-6;          // sin^2 of the angle below which two lines are parallel
 
-// The point at arc length t along the polyline `row` (cumulative lengths `s`).
-Point at_arc(std::span<const Point> row, const std::vector<double>& s, double t) {
+// The point at arc length t along the polyline `row` (cumulative lengths `s`; closed: s has
+// the closing segment's end too, and t wraps around the length s.back()).
+Point at_arc(std::span<const Point> row, const std::vector<double>& s, double t, bool closed) {
+  const std::size_t n = row.size();
+  if (closed) t -= s.back() * std::floor(t / s.back());
   const auto it = std::upper_bound(s.begin(), s.end(), t);
   const std::size_t i =
-      std::clamp<std::size_t>(static_cast<std::size_t>(it - s.begin()), 1, row.size() - 1);
+      std::clamp<std::size_t>(static_cast<std::size_t>(it - s.begin()), 1, s.size() - 1);
   const double d = s[i] - s[i - 1];
   const double a = d > 0 ? std::clamp((t - s[i - 1]) / d, 0.0, 1.0) : 0.0;
-  return (1 - a) * row[i - 1] + a * row[i];
+  return (1 - a) * row[i - 1] + a * row[i == n ? 0 : i];
 }
 
 // How far the row turns at point i between the chords from and to the points a window `w` of
 // arc length before and after it (radians; 0 where the window leaves the row).
 double turn_at(std::span<const Point> row, const std::vector<double>& s, std::size_t i, double w) {
   if (s[i] - w < 0 || s[i] + w > s.back()) return 0;
-  const Point d1 = row[i] - at_arc(row, s, s[i] - w), d2 = at_arc(row, s, s[i] + w) - row[i];
+  const Point d1 = row[i] - at_arc(row, s, s[i] - w, false),
+              d2 = at_arc(row, s, s[i] + w, false) - row[i];
   const double n1 = d1.norm(), n2 = d2.norm();
   return n1 > 0 && n2 > 0 ? std::acos(std::clamp(d1.dot(d2) / (n1 * n2), -1.0, 1.0)) : 0.0;
 }
@@ -55,7 +62,8 @@ double corner_arc(std::span<const Point> row, const std::vector<double>& s, std:
     const std::size_t hi = lo + 1;
     if (s[hi] - s[lo] < kGapSpacings * spacing || s[lo] - 0.5 * w < 0 || s[hi] + 0.5 * w > s.back())
       return;
-    const Point a0 = at_arc(row, s, s[lo] - 0.5 * w), b0 = at_arc(row, s, s[hi] + 0.5 * w);
+    const Point a0 = at_arc(row, s, s[lo] - 0.5 * w, false),
+                b0 = at_arc(row, s, s[hi] + 0.5 * w, false);
     const Point da = row[lo] - a0, db = row[hi] - b0, r = a0 - b0;
     const double aa = da.dot(da), bb = db.dot(db), ab = da.dot(db), ar = da.dot(r);
     const double br = db.dot(r), den = aa * bb - ab * ab;
@@ -78,20 +86,75 @@ double corner_arc(std::span<const Point> row, const std::vector<double>& s, std:
 
 }  // namespace
 
-std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol) {
+std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol, bool closed,
+                                   bool between) {
   std::vector<RowCorner> out;
   const std::size_t n = row.size();
   if (n < 8 || !(tol.minCoeff() > 0)) return out;
-  std::vector<double> s(n, 0.0);
-  for (std::size_t i = 1; i < n; ++i) s[i] = s[i - 1] + (row[i] - row[i - 1]).norm();
+  std::vector<double> s(closed ? n + 1 : n, 0.0);
+  for (std::size_t i = 1; i < s.size(); ++i) s[i] = s[i - 1] + (row[i % n] - row[i - 1]).norm();
   const double len = s.back();
   if (!(len > 0)) return out;
   std::vector<double> step(n - 1);
   for (std::size_t i = 1; i < n; ++i) step[i - 1] = s[i] - s[i - 1];
   std::nth_element(step.begin(), step.begin() + step.size() / 2, step.end());
-  const double spacing = step[step.size() / 2];  // the median
+  const double spacing = step[step.size() / 2];  // the median (open rows' gaps)
   const double t = tol.maxCoeff();
   const double w = std::max(kCornerWindow * len, kWindowInT * t), off = kCornerOffset * t;
+  if (closed && 2 * w >= len) return out;
+  // Whether point i turns by the angle (and how far): its windows wrap on a closed row.
+  auto turning = [&](std::size_t i, double& turn) {
+    turn = 0;
+    if (!closed && (s[i] - w < 0 || s[i] + w > len)) return false;
+    const Point a = at_arc(row, s, s[i] - w, closed), b = at_arc(row, s, s[i] + w, closed);
+    const Point d1 = row[i] - a, d2 = b - row[i], ab = b - a;
+    const double n1 = d1.norm(), n2 = d2.norm();
+    if (!(n1 > 0 && n2 > 0)) return false;
+    turn = std::acos(std::clamp(d1.dot(d2) / (n1 * n2), -1.0, 1.0));
+    const double nab = ab.norm();
+    const double along = nab > 0 ? d1.dot(ab) / nab : 0.0;  // off the chord a-b: h
+    const double h = std::sqrt(std::max(0.0, n1 * n1 - along * along));
+    // On an open row a weaker turn is a corner too where it is a kink: it turns within half
+    // the window nearly as much as within the whole (a smooth bend turns about half as much).
+    if (!closed)
+      return h >= off &&
+             (turn >= kCornerAngle ||
+              (turn >= kKinkAngle && turn_at(row, s, i, 0.5 * w) >= kKinkConcentration * turn));
+    if (!(turn >= kCornerAngle && h >= off)) return false;
+    // A closed row's corner turns within half the window nearly as much (a smooth lobe turns in
+    // proportion to the window: no crease goes there).
+    const Point c = at_arc(row, s, s[i] - kSharpWindow * w, true),
+                e = at_arc(row, s, s[i] + kSharpWindow * w, true);
+    const Point e1 = row[i] - c, e2 = e - row[i];
+    const double m1 = e1.norm(), m2 = e2.norm();
+    return m1 > 0 && m2 > 0 &&
+           std::acos(std::clamp(e1.dot(e2) / (m1 * m2), -1.0, 1.0)) >= kSharpShare * turn;
+  };
+  // Where a closed row's corner lies between its points: the lines from the window's ends
+  // through the points either side of point i meet there (nearest to each other); its arc
+  // length from point i - 1, within the two spacings around point i. A sharp corner between
+  // samples, creased at a sample instead, leaves the sample off the far side's line.
+  auto between_points = [&](std::size_t i) {
+    const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
+    const double s0 = i == 0 ? s[n - 1] - len : s[before], s1 = s[i + 1];
+    const Point a = at_arc(row, s, s[i] - w, true), b = at_arc(row, s, s[i] + w, true);
+    const Point p = row[before], q = row[after], d1 = p - a, d2 = b - q, r = p - q;
+    const double aa = d1.dot(d1), bb = d1.dot(d2), cc = d2.dot(d2), dd = d1.dot(r), ee = d2.dot(r),
+                 den = aa * cc - bb * bb;
+    if (!(den > kParallel * aa * cc)) return s[i];  // the two lines about parallel: keep
+    const Point c =
+        0.5 * (p + d1 * ((bb * ee - cc * dd) / den) + q + d2 * ((aa * ee - bb * dd) / den));
+    const double at = std::clamp(s0 + (c - p).norm(), s0, s1);
+    return at < 0 ? at + len : at >= len ? at - len : at;
+  };
+  // A closed row is walked from a point that does not turn, so no run straddles its start.
+  std::size_t from = 1, steps = n - 2;
+  if (closed) {
+    double turn = 0;
+    for (from = 0; from < n && turning(from, turn);) ++from;
+    if (from == n) return out;  // turning everywhere: no corner stands out
+    steps = n;
+  }
   // Runs of points turning by the angle; one corner per run, at its largest turning.
   double best = 0;
   std::size_t at = 0;
@@ -99,33 +162,19 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol)
   auto close_run = [&] {
     if (!in_run) return;
     in_run = false;
-    const RowCorner c{corner_arc(row, s, at, w, spacing) / len, best};
-    if (!out.empty() && (c.fraction - out.back().fraction) * len < w) {
+    const double arc =
+        closed ? (between ? between_points(at) : s[at]) : corner_arc(row, s, at, w, spacing);
+    const RowCorner c{arc / len, best, at};
+    if (!out.empty() && std::abs(c.fraction - out.back().fraction) * len < w) {
       if (c.turn > out.back().turn) out.back() = c;  // two runs within a window: the sharper
     } else {
       out.push_back(c);
     }
   };
-  for (std::size_t i = 1; i + 1 < n; ++i) {
-    bool corner = false;
+  for (std::size_t k = 0; k < steps; ++k) {
+    const std::size_t i = (from + k) % n;
     double turn = 0;
-    if (s[i] - w >= 0 && s[i] + w <= len) {
-      const Point a = at_arc(row, s, s[i] - w), b = at_arc(row, s, s[i] + w);
-      const Point d1 = row[i] - a, d2 = b - row[i], ab = b - a;
-      const double n1 = d1.norm(), n2 = d2.norm();
-      if (n1 > 0 && n2 > 0) {
-        turn = std::acos(std::clamp(d1.dot(d2) / (n1 * n2), -1.0, 1.0));
-        const double nab = ab.norm();
-        const double along = nab > 0 ? d1.dot(ab) / nab : 0.0;  // off the chord a-b: h
-        const double h = std::sqrt(std::max(0.0, n1 * n1 - along * along));
-        // A weaker turn is a corner too where it is a kink: it turns within half the window
-        // nearly as much as within the whole (a smooth bend turns about half as much).
-        corner = h >= off &&
-                 (turn >= kCornerAngle ||
-                  (turn >= kKinkAngle && turn_at(row, s, i, 0.5 * w) >= kKinkConcentration * turn));
-      }
-    }
-    if (corner) {
+    if (turning(i, turn)) {
       if (!in_run || turn > best) {
         best = turn;
         at = i;
@@ -136,6 +185,16 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol)
     }
   }
   close_run();
+  if (!closed) return out;
+  std::sort(out.begin(), out.end(),
+            [](const RowCorner& x, const RowCorner& y) { return x.fraction < y.fraction; });
+  // The last and the first corner within a window across the start: the sharper.
+  if (out.size() > 1 && (1 - out.back().fraction + out.front().fraction) * len < w) {
+    if (out.back().turn > out.front().turn) out.front() = out.back();
+    out.pop_back();
+    std::sort(out.begin(), out.end(),
+              [](const RowCorner& x, const RowCorner& y) { return x.fraction < y.fraction; });
+  }
   return out;
 }
 
@@ -266,13 +325,19 @@ std::vector<double> corner_parameters(const Rows& rows, const MatchedCorners& m)
   std::vector<double> u;
   u.reserve(rows.total_points());
   const std::size_t count = m.common.size();
+  const bool closed = !m.seam.empty();
   std::vector<double> x(count + 2), y(count + 2);
   x.front() = y.front() = 0;
   x.back() = y.back() = 1;
   for (std::size_t k = 0; k < count; ++k) y[k + 1] = m.common[k];
   for (std::size_t j = 0; j < rows.size(); ++j) {
     for (std::size_t k = 0; k < count; ++k) x[k + 1] = m.fraction[j][k];
-    for (double t : normalized_positions(rows[j], Parametrization::kChord, false)) {
+    std::vector<double> f = normalized_positions(rows[j], Parametrization::kChord, closed);
+    if (closed) {  // counted from the seam (its corner, between two points or at one)
+      const double f0 = m.seam[j];
+      for (double& t : f) t = t >= f0 ? t - f0 : std::min(1.0, t - f0 + 1);
+    }
+    for (double t : f) {
       const auto it = std::upper_bound(x.begin() + 1, x.end() - 1, t);
       const std::size_t i = static_cast<std::size_t>(it - x.begin());
       const double a = std::clamp((t - x[i - 1]) / (x[i] - x[i - 1]), 0.0, 1.0);

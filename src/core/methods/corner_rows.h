@@ -17,8 +17,9 @@
 //             rows, a jump between neighbours): no corners.
 //          3. Parameters: each row's chord fractions remapped piecewise linearly so its k-th
 //             corner sits at U_k, the mean of the rows' k-th corner fractions.
-// LIMITS   Open rows only (closed rows keep their parameters); corners within one window of
-//          a row's ends are not looked for (the ends are creases already).
+// LIMITS   Corners within one window of an open row's ends are not looked for (the ends are
+//          creases already); on a closed row the windows wrap around. Closed rows are matched
+//          by closed_corners.h (a seam at a common corner), then here.
 #pragma once
 
 #include <span>
@@ -28,22 +29,33 @@
 
 namespace sfit::detail {
 
-/// One corner of a row: its chord fraction (0 ... 1) and how far it turns (radians).
+/// One corner of a row: its chord fraction (0 ... 1), how far it turns (radians), its point
+/// (the sharpest turning).
 struct RowCorner {
   double fraction = 0;
   double turn = 0;
+  std::size_t index = 0;
 };
 
-/// The corners of an open row (chord fractions ascending), at per-axis tolerance `tol`.
-std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol);
+/// The corners of a row (chord fractions ascending), at per-axis tolerance `tol`; `closed`:
+/// the row closes from its last point to its first (fractions of the closed length, the
+/// windows wrapping around); `between` (closed rows): each corner's fraction where the lines
+/// either side of its point meet, between two points (a sharp corner between samples), else
+/// its point's.
+std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol,
+                                   bool closed = false, bool between = false);
 
 /// Matched corners: fraction[j][k] is row j's k-th corner (detected or interpolated),
-/// common[k] = U_k their mean; empty when the rows have no consistent corners.
+/// common[k] = U_k their mean; empty when the rows have no consistent corners. Closed rows
+/// (closed_corners.h): seam[j] is row j's chord fraction (of its closed length) at u = 0 (its
+/// seam corner, every other fraction counted from it), and common may be empty (the seam the only
+/// corner).
 struct MatchedCorners {
   std::vector<std::vector<double>> fraction;
   std::vector<double> common;
+  std::vector<double> seam;
   bool followed = false;  // some corner was found by following it from row to row
-  bool empty() const { return common.empty(); }
+  bool empty() const { return common.empty() && seam.empty(); }
 };
 
 /// Matches the corners of every row (row_corners() of each) across the rows; with `follow`,
@@ -51,8 +63,9 @@ struct MatchedCorners {
 MatchedCorners match_corners(const std::vector<std::vector<RowCorner>>& corners,
                              bool follow = true);
 
-/// Each point's parameter in [0, 1]: its row's chord fraction, remapped piecewise linearly so
-/// that the row's k-th corner sits at m.common[k] (order of rows.points()).
+/// Each point's parameter in [0, 1]: its row's chord fraction (closed: of the closed length,
+/// counted from the seam), remapped piecewise linearly so that the row's k-th corner sits at
+/// m.common[k] (order of rows.points()).
 std::vector<double> corner_parameters(const Rows& rows, const MatchedCorners& m);
 
 }  // namespace sfit::detail
