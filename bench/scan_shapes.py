@@ -119,16 +119,22 @@ def ship_stations(rng):
         corners = np.array([[0, 0], [chine_y, chine_z], [beam, chine_z + 0.3],
                             [beam, depth], [0, depth + 0.15]])
         radii = [0.0, r_chine, 0.0, r_deck, 0.0]
-        pts = _rounded_polyline(corners, radii)
-        n = int(rng.integers(180, 461))
-        t = _uneven(rng, n, 0.6, 1.6)
-        t[0], t[-1] = 0.0, 1.0
-        t = np.unique(t)
-        d = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
-        y = np.interp(t * d[-1], d, pts[:, 0])
-        z = np.interp(t * d[-1], d, pts[:, 1])
-        rows.append(np.column_stack([np.full(len(y), x), y, z]))
+        rows.append(_station(rng, x, corners, radii, 180, 461))
     return rows
+
+
+def _station(rng, x, corners, radii, lo, hi):
+    """A station at x: the polyline through corners (y, z) rounded by radii, lo ... hi - 1
+    points spaced unevenly by arc length, both ends kept."""
+    pts = _rounded_polyline(corners, radii)
+    n = int(rng.integers(lo, hi))
+    t = _uneven(rng, n, 0.6, 1.6)
+    t[0], t[-1] = 0.0, 1.0
+    t = np.unique(t)
+    d = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+    y = np.interp(t * d[-1], d, pts[:, 0])
+    z = np.interp(t * d[-1], d, pts[:, 1])
+    return np.column_stack([np.full(len(y), x), y, z])
 
 
 def _rounded_polyline(c, radii, per_arc=200):
@@ -248,13 +254,5 @@ def hull_variants(rng):
                             [0, depth + camber]])
         grow = max(0.0, s - 0.4) / 0.6
         radii = [0.0, r_chine_max * grow, 0.0, r_deck_max * grow, 0.0]
-        pts = _rounded_polyline(corners, radii)
-        n = int(rng.integers(150, 401))
-        t = _uneven(rng, n, 0.6, 1.6)
-        t[0], t[-1] = 0.0, 1.0
-        t = np.unique(t)
-        d = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
-        y = np.interp(t * d[-1], d, pts[:, 0])
-        z = np.interp(t * d[-1], d, pts[:, 1])
-        rows.append(np.column_stack([np.full(len(y), x), y, z]))
+        rows.append(_station(rng, x, corners, radii, 150, 401))
     return rows

@@ -14,6 +14,7 @@ constexpr double kCornerWindow = 0.04;  // the window of arc length, a fraction 
 constexpr double kCornerAngle = 0.6;    // radians (34 degrees) of turning within the window
 constexpr double kKinkAngle = 0.35;     // open rows: radians (20 degrees), a kink's least turning
 constexpr double kKinkConcentration = 0.8;  // its turning within half the window, at least
+constexpr double kGapParallel = 1e-12;      // open rows' gap legs: sin^2 below which parallel
 constexpr double kGapSpacings = 2.0;        // a segment this many median spacings long: a gap
 constexpr double kCornerOffset = 2.0;       // the corner's distance off the window's chord, in T
 constexpr double kWindowInT = 8.0;          // the window, at least this many T (noise turns less)
@@ -38,13 +39,28 @@ Point at_arc(std::span<const Point> row, const std::vector<double>& s, double t,
 }
 
 // How far the row turns at point i between the chords from and to the points a window `w` of
-// arc length before and after it (radians; 0 where the window leaves the row).
-double turn_at(std::span<const Point> row, const std::vector<double>& s, std::size_t i, double w) {
-  if (s[i] - w < 0 || s[i] + w > s.back()) return 0;
-  const Point d1 = row[i] - at_arc(row, s, s[i] - w, false),
-              d2 = at_arc(row, s, s[i] + w, false) - row[i];
+// arc length before and after it (radians; 0 where the window leaves an open row). The
+// windows wrap on a closed row.
+double turn_at(std::span<const Point> row, const std::vector<double>& s, std::size_t i, double w,
+               bool closed) {
+  if (!closed && (s[i] - w < 0 || s[i] + w > s.back())) return 0;
+  const Point d1 = row[i] - at_arc(row, s, s[i] - w, closed),
+              d2 = at_arc(row, s, s[i] + w, closed) - row[i];
   const double n1 = d1.norm(), n2 = d2.norm();
   return n1 > 0 && n2 > 0 ? std::acos(std::clamp(d1.dot(d2) / (n1 * n2), -1.0, 1.0)) : 0.0;
+}
+
+// The parameters tp, tq of the closest points of the lines p + t dp and q + t dq; false where
+// they are parallel within `parallel` (the sine squared of their angle).
+bool closest_on_lines(const Point& p, const Point& dp, const Point& q, const Point& dq,
+                      double parallel, double& tp, double& tq) {
+  const Point r = p - q;
+  const double aa = dp.dot(dp), ab = dp.dot(dq), bb = dq.dot(dq), ar = dp.dot(r), br = dq.dot(r);
+  const double den = aa * bb - ab * ab;
+  if (!(den > parallel * aa * bb)) return false;
+  tp = (ab * br - bb * ar) / den;
+  tq = (aa * br - ab * ar) / den;
+  return true;
 }
 
 // Where on the row (arc length) its corner lies, the corner's sample at arc length s[at]. A
@@ -64,11 +80,9 @@ double corner_arc(std::span<const Point> row, const std::vector<double>& s, std:
       return;
     const Point a0 = at_arc(row, s, s[lo] - 0.5 * w, false),
                 b0 = at_arc(row, s, s[hi] + 0.5 * w, false);
-    const Point da = row[lo] - a0, db = row[hi] - b0, r = a0 - b0;
-    const double aa = da.dot(da), bb = db.dot(db), ab = da.dot(db), ar = da.dot(r);
-    const double br = db.dot(r), den = aa * bb - ab * ab;
-    if (!(den > 1e-12 * aa * bb)) return;  // (nearly) parallel legs: no corner point
-    const double ta = (ab * br - bb * ar) / den, tb = (aa * br - ab * ar) / den;
+    const Point da = row[lo] - a0, db = row[hi] - b0;
+    double ta = 0, tb = 0;
+    if (!closest_on_lines(a0, da, b0, db, kGapParallel, ta, tb)) return;  // no corner point
     if (!(ta >= 1 && tb >= 1)) return;  // P behind a gap's end: the legs do not meet in it
     const Point P = 0.5 * ((a0 + ta * da) + (b0 + tb * db));
     const double p0 = (P - row[lo]).norm(), p1 = (row[hi] - P).norm();
@@ -118,17 +132,12 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol,
     // the window nearly as much as within the whole (a smooth bend turns about half as much).
     if (!closed)
       return h >= off &&
-             (turn >= kCornerAngle ||
-              (turn >= kKinkAngle && turn_at(row, s, i, 0.5 * w) >= kKinkConcentration * turn));
+             (turn >= kCornerAngle || (turn >= kKinkAngle && turn_at(row, s, i, 0.5 * w, false) >=
+                                                                 kKinkConcentration * turn));
     if (!(turn >= kCornerAngle && h >= off)) return false;
     // A closed row's corner turns within half the window nearly as much (a smooth lobe turns in
     // proportion to the window: no crease goes there).
-    const Point c = at_arc(row, s, s[i] - kSharpWindow * w, true),
-                e = at_arc(row, s, s[i] + kSharpWindow * w, true);
-    const Point e1 = row[i] - c, e2 = e - row[i];
-    const double m1 = e1.norm(), m2 = e2.norm();
-    return m1 > 0 && m2 > 0 &&
-           std::acos(std::clamp(e1.dot(e2) / (m1 * m2), -1.0, 1.0)) >= kSharpShare * turn;
+    return turn_at(row, s, i, kSharpWindow * w, true) >= kSharpShare * turn;
   };
   // Where a closed row's corner lies between its points: the lines from the window's ends
   // through the points either side of point i meet there (nearest to each other); its arc
@@ -138,12 +147,10 @@ std::vector<RowCorner> row_corners(std::span<const Point> row, const Point& tol,
     const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
     const double s0 = i == 0 ? s[n - 1] - len : s[before], s1 = s[i + 1];
     const Point a = at_arc(row, s, s[i] - w, true), b = at_arc(row, s, s[i] + w, true);
-    const Point p = row[before], q = row[after], d1 = p - a, d2 = b - q, r = p - q;
-    const double aa = d1.dot(d1), bb = d1.dot(d2), cc = d2.dot(d2), dd = d1.dot(r), ee = d2.dot(r),
-                 den = aa * cc - bb * bb;
-    if (!(den > kParallel * aa * cc)) return s[i];  // the two lines about parallel: keep
-    const Point c =
-        0.5 * (p + d1 * ((bb * ee - cc * dd) / den) + q + d2 * ((aa * ee - bb * dd) / den));
+    const Point p = row[before], q = row[after], d1 = p - a, d2 = b - q;
+    double tp = 0, tq = 0;
+    if (!closest_on_lines(p, d1, q, d2, kParallel, tp, tq)) return s[i];  // about parallel: keep
+    const Point c = 0.5 * (p + d1 * tp + q + d2 * tq);
     const double at = std::clamp(s0 + (c - p).norm(), s0, s1);
     return at < 0 ? at + len : at >= len ? at - len : at;
   };
