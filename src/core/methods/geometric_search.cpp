@@ -107,19 +107,20 @@ void keep(Kept& kept, int nu, int nv, Attempt a) {
 // `probe`: attempt()'s.
 PairOracle oracle_for(const ScatteredProblem& sp, const Frame& fr, const Rows* sample, bool report,
                       bool reweighted, Kept* kept = nullptr, long* near = nullptr,
-                      bool* probe = nullptr) {
-  return PairOracle([&sp, &fr, sample, report, reweighted, kept, near, probe](int nu, int nv) {
-    if (static_cast<long>(nu) * nv > kMaxUnknowns || sp.cost(nu, nv) > kMaxCost ||
-        static_cast<std::size_t>(nu) * nv > sp.rows().total_points())
-      return PairVerdict{false, HUGE_VAL};
-    Attempt a = attempt(sp, fr, sample, nu, nv, reweighted, nullptr, kSmoothing, probe);
-    const PairVerdict v = a.verdict;
-    if (kept && v.holds) keep(*kept, nu, nv, std::move(a));
-    if (near && !v.holds && v.ratio <= kReweightReach)
-      *near = std::min(*near, static_cast<long>(nu) * nv);
-    if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, report && v.holds);
-    return v;
-  });
+                      bool* probe = nullptr, double start = kSmoothing) {
+  return PairOracle(
+      [&sp, &fr, sample, report, reweighted, kept, near, probe, start](int nu, int nv) {
+        if (static_cast<long>(nu) * nv > kMaxUnknowns || sp.cost(nu, nv) > kMaxCost ||
+            static_cast<std::size_t>(nu) * nv > sp.rows().total_points())
+          return PairVerdict{false, HUGE_VAL};
+        Attempt a = attempt(sp, fr, sample, nu, nv, reweighted, nullptr, start, probe);
+        const PairVerdict v = a.verdict;
+        if (kept && v.holds) keep(*kept, nu, nv, std::move(a));
+        if (near && !v.holds && v.ratio <= kReweightReach)
+          *near = std::min(*near, static_cast<long>(nu) * nv);
+        if (FitMonitor* m = current_monitor()) m->pair_tried(nu, nv, report && v.holds);
+        return v;
+      });
 }
 
 PairRange range_for(const ScatteredProblem& sp, const Rows& rows) {
@@ -144,8 +145,11 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   // Whether the reweighted fit held at a near miss of the plain search over the best plane
   // (tried there on a copy, search_geometric_counted()'s `reweight_held`; see below).
   bool reweight_held = false;
-  std::optional<GeometricFit> g = search_geometric_counted(
-      fr, o, bound, corrections, tried, BasePlane::kBest, linf_bound, false, &near, &reweight_held);
+  // Whether, where nothing held, the smoothness term is what missed (see below).
+  bool lower_helps = false;
+  std::optional<GeometricFit> g =
+      search_geometric_counted(fr, o, bound, corrections, tried, BasePlane::kBest, linf_bound,
+                               false, &near, &reweight_held, kSmoothing, &lower_helps);
   // The coordinate plane's parameters, below the count found (geometric_params.h): only
   // where the best plane's found one. Where it found none below the bound the coordinate
   // plane's search was as long and found none either on every example set and generated
@@ -180,6 +184,35 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
     r->stop += "; least squares reweighted where it missed T by a little";
     g = std::move(r);
   }
+  // The searches again with the smoothness term's weight lowered from the first pair on
+  // (kSmoothing x kSmoothingLower), below what they found: where what held needed the weight
+  // lowered (attempt()), or where nothing held and the pair missed least, with the weight
+  // lowered, held or missed by at most half as much (the probe in search_geometric_counted()).
+  // The default weight's pull on the spans that hold data does not shrink with T, and at a
+  // small T it alone misses T at pairs far from the near miss attempt() lowers it at (scan
+  // lines clipped by a disk at 1e-5 of the diagonal: nothing below a quarter of the points
+  // held, 199 x 120 from the row rules; with the lowered weight 30 x 31). Elsewhere the search
+  // is not run again: lowered from the start the weight changes the search's path, which can
+  // end at a larger pair (the same clipped lines at 1e-3: 13 x 12 against 11 x 13), and where
+  // nothing held for other reasons it would cost as much again for nothing (a DEM at 1e-3:
+  // +55 % of the fit's CPU).
+  if ((g && g->smoothing < kSmoothing) || (!g && lower_helps)) {
+    const double low = kSmoothing * kSmoothingLower;
+    const long before = g ? static_cast<long>(g->surface.count_u) * g->surface.count_v : bound;
+    std::optional<GeometricFit> l = search_geometric_counted(
+        fr, o, before, corrections, tried, BasePlane::kBest, 0, false, nullptr, nullptr, low);
+    if (l) {
+      const long best = static_cast<long>(l->surface.count_u) * l->surface.count_v;
+      std::optional<GeometricFit> a = search_geometric_counted(
+          fr, o, best, corrections, tried, BasePlane::kAxis, 0, false, nullptr, nullptr, low);
+      if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < best) {
+        a->stop += "; parameters from the coordinate plane nearest the best plane";
+        l = std::move(a);
+      }
+      l->stop += "; the smoothness term's weight lowered from the first pair on";
+      g = std::move(l);
+    }
+  }
   if (g) g->tried = tried;
   if (pairs) *pairs = tried;
   return g;
@@ -189,7 +222,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
                                                      long bound, int corrections, long& tried,
                                                      BasePlane plane, long linf_bound,
                                                      bool reweighted, long* near_miss,
-                                                     bool* reweight_held) {
+                                                     bool* reweight_held, double smoothing,
+                                                     bool* lower_helps) {
   std::optional<Fractions> f = base_surface_fractions(fr.centred, o.closed_u, o.closed_v, plane);
   if (!f) return std::nullopt;
   const ScatteredSpec spec{o.degree_u, o.degree_v, o.closed_u, o.closed_v, fr.threads};
@@ -210,14 +244,15 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   PairRange range = range_for(*sp, srows);
   Kept kept_sp;  // of the problem *sp
   PairOracle first =
-      oracle_for(*sp, fr, sptr, !sample, reweighted, &kept_sp, near_miss, reweight_held);
+      oracle_for(*sp, fr, sptr, !sample, reweighted, &kept_sp, near_miss, reweight_held, smoothing);
   // A first bound from the diagonal (k, k), k growing by 1.5: a few small solves, after which
   // the pair search never tries a pair with more control points than it.
   long start = bound;
-  int diagonal = 0;
+  int diagonal = 0, largest = 0;  // the pair that held; the largest tried
   for (int k = std::max(range.min_u, range.min_v);
        static_cast<long>(k) * k < bound && range.affordable(k, k);
        k = std::max(k + 1, static_cast<int>(k * 1.5))) {
+    largest = k;
     if (first(k, k).holds) {
       start = static_cast<long>(k) * k + 1;
       diagonal = k;
@@ -232,10 +267,22 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
     c.stop = "minimal";
   }
   tried += first.tried();
+  if (c.nu == 0 && lower_helps && smoothing >= kSmoothing && largest > 0) {
+    // Whether the smoothness term is what missed: the largest pair of the diagonal, with the
+    // weight lowered (one solve), holds or misses by at most half as much. (Not the pair that
+    // missed least: that can be one whose spans without data the term decides, near T for
+    // other reasons; scan lines clipped by a disk at 1e-5: 31 x 151 missed by 1.29 T with
+    // either weight, while 30 x 31 held with the lowered one.)
+    const PairVerdict* was = first.find(largest, largest);
+    const Attempt a =
+        attempt(*sp, fr, sptr, largest, largest, false, nullptr, kSmoothing * kSmoothingLower);
+    ++tried;
+    *lower_helps = a.verdict.holds || (was && a.verdict.ratio <= was->ratio / 2);
+  }
   if (c.nu == 0) {
     // Nothing held by least squares: minimax at the nearest pairs (geometric_minimax.h).
-    const GeometricLeastSquares ls = [&fr](const ScatteredProblem& p, int nu, int nv) {
-      Attempt a = attempt(p, fr, nullptr, nu, nv, false);
+    const GeometricLeastSquares ls = [&fr, smoothing](const ScatteredProblem& p, int nu, int nv) {
+      Attempt a = attempt(p, fr, nullptr, nu, nv, false, nullptr, smoothing);
       return GeometricTry{a.verdict.holds, std::move(a.s), a.smoothing};
     };
     return geometric_minimax(fr, o, spec, *f, first, std::min(bound, linf_bound), plane, ls, tried);
@@ -248,7 +295,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
     const auto held = kept_sp.find({nu, nv});
     const Attempt at = held != kept_sp.end() ? held->second
                                              : attempt(*sp, fr, sptr, nu, nv, reweighted, nullptr,
-                                                       kSmoothing, reweight_held);
+                                                       smoothing, reweight_held);
     if (!at.verdict.holds) break;
     std::vector<double> u = sp->u_at(nu), v = sp->v_at(nv);
     project_parameters(at.s, srows, u, v, kNewtonSteps, fr.threads);
@@ -256,8 +303,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
     to_fractions(at.s, u, v, nfu, nfv);
     auto next = std::make_unique<ScatteredProblem>(srows, spec, nfu, nfv);
     Kept kept_next;
-    PairOracle o2 =
-        oracle_for(*next, fr, sptr, !sample, reweighted, &kept_next, near_miss, reweight_held);
+    PairOracle o2 = oracle_for(*next, fr, sptr, !sample, reweighted, &kept_next, near_miss,
+                               reweight_held, smoothing);
     if (!o2(nu, nv).holds) {
       tried += o2.tried();
       break;
@@ -286,7 +333,8 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   // Fine: verify on every point, raise until it holds, descend while one fewer holds.
   const ScatteredProblem full(fr.centred, spec, std::move(full_u), std::move(full_v));
   Kept kept;
-  PairOracle all = oracle_for(full, fr, nullptr, true, reweighted, &kept, near_miss, reweight_held);
+  PairOracle all =
+      oracle_for(full, fr, nullptr, true, reweighted, &kept, near_miss, reweight_held, smoothing);
   if (sample) {
     bool holds = all(nu, nv).holds;
     for (int k = 1; !holds && k <= 8; ++k) {
@@ -315,7 +363,7 @@ std::optional<GeometricFit> search_geometric_counted(const Frame& fr, const FitO
   auto it = kept.find({nu, nv});
   const Attempt at = it != kept.end() ? std::move(it->second)
                                       : attempt(full, fr, nullptr, nu, nv, reweighted, nullptr,
-                                                kSmoothing, reweight_held);
+                                                smoothing, reweight_held);
   if (!at.verdict.holds) return std::nullopt;
   out.surface = at.s;
   out.u = full.u_at(nu);

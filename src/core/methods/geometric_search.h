@@ -75,10 +75,14 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
 /// `reweight_held` (not `reweighted`): at each pair the reweighted search would reweight, the
 /// reweighted fit is tried on a copy (the search itself stays least squares) until one holds,
 /// which sets *reweight_held: up to there the reweighted search solves the same pairs.
+/// `smoothing`: the smoothness weight every pair starts at (attempt() lowers it from there).
+/// `lower_helps` (at the default weight): where no pair held, set to whether the pair that
+/// missed least holds, or misses by at most half as much, with the weight lowered.
 std::optional<GeometricFit> search_geometric_counted(
     const Frame& fr, const FitOptions& o, long bound, int corrections, long& tried,
     BasePlane plane = BasePlane::kBest, long linf_bound = LONG_MAX, bool reweighted = false,
-    long* near_miss = nullptr, bool* reweight_held = nullptr);
+    long* near_miss = nullptr, bool* reweight_held = nullptr, double smoothing = kSmoothing,
+    bool* lower_helps = nullptr);
 
 /// The rule's surface at exactly (nu, nv) (FitOptions::counts), holding or not; nullopt where
 /// the rule has no base surface for the rows. The smoothness weight starts at `smoothing`
