@@ -243,6 +243,7 @@ bool fit_on_corners(const Rows& rows, const MatchedCorners& m, bool closed, int 
                     FitResult& r) {
   const Surface& uni = r.surface;  // (replaced at the end: its counts kept for the report)
   const int uni_u = uni.count_u, uni_v = uni.count_v;
+  const std::string uni_reason = r.report.stop_reason;
   const Point tol = r.report.tolerance;
   const std::vector<double> u = corner_parameters(rows, m);
   const std::vector<double>& v = r.v;
@@ -396,6 +397,8 @@ bool fit_on_corners(const Rows& rows, const MatchedCorners& m, bool closed, int 
       (kept < points ? "below" : "not below") + " the " + std::to_string(points) +
       " points; on uniform knots the method gave " + std::to_string(uni_u) + " x " +
       std::to_string(uni_v);
+  // Still above the points: what the method measured of surfaces below them stays said.
+  if (kept >= points) r.report.stop_reason += " (" + uni_reason + ")";
   r.report.method = FitMethod::kSurface;
   r.report.knots = KnotRule::kCorners;
   r.report.parametrization = Parametrization::kChord;
