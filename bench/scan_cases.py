@@ -10,7 +10,7 @@ sections, ship stations with a chine and a deck corner, a 344 x 403 DEM with a r
 a range image with noise near T and a large irregular hole. For each, at 1e-2 and 1e-3 of the bounding-box diagonal, the
 table gives the points, the control points of the default fit (nu x nv), their ratio to the
 points, the rule that made the surface, whether the report says it holds T, the fold measure,
-the CLI's wall time, and whether the report says that the data's noise or jumps exceed T (where more
+the CLI's wall time, and whether the report says that T forces interpolation (where more
 control points than points are allowed).
 
     bench/scan_cases.py build/apps/sfit/sfit [--only NAME] [--tol 1e-2,1e-3] [--seed 7] [--stop]
@@ -212,10 +212,11 @@ CASES = {
 
 
 def claim(stop):
-    """What the report says about a count above the points: T forcing it (noise or jumps),
-    or that no surface below the points held under the rules searched (measured)."""
-    if "exceed T" in stop:
-        return "report: noise or jumps exceed T"
+    """What the report says about a count above the points: T forcing it (noise, jumps, rows
+    that need every point alone), or that no surface below the points held under the rules
+    searched (measured)."""
+    if "T forces interpolation" in stop:
+        return "report: T forces interpolation"
     if "no surface below the points held under the rules searched" in stop:
         return "report: none below the points held under the rules searched"
     return ""

@@ -40,11 +40,20 @@ bool replace_below_points(const Frame& fr, const FitOptions& o, bool forced, Fit
       forced || (rows_tell ? t_forces_interpolation(fr.centred, o, fr.roundoff, rows_need)
                            : neighbours_force_interpolation(fr.centred, o, fr.roundoff, rows_need));
   if (claim) {
+    // What shows it: the rows alone need about every point (noise or jumps beyond T, or, on
+    // smooth rows at a tiny T, each row's curve at its own parameters: generated fuselage
+    // sections at 1e-6 of the diagonal need 944 of their 1,030 points alone), or the points
+    // against their neighbours (noise).
     if (above) {
-      r.report.stop_reason +=
-          "; more control points than data points: T forces interpolation, "
-          "the data's noise or its jumps between points exceed T";
-      if (!rows_need.empty()) r.report.stop_reason += " (" + rows_need + ")";
+      r.report.stop_reason += "; more control points than data points: T forces interpolation, ";
+      if (rows_need.empty())
+        r.report.stop_reason += "the data's noise or its jumps between points exceed T";
+      else if (rows_tell)
+        r.report.stop_reason += "each row alone needs about every point at T (" + rows_need +
+                                "): the data's noise or its jumps exceed T, or T is so small "
+                                "that each row's curve at its own parameters needs them";
+      else
+        r.report.stop_reason += "the data's noise exceeds T (" + rows_need + ")";
     }
     return false;
   }
