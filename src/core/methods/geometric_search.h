@@ -76,8 +76,8 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
 /// reweighted fit is tried on a copy (the search itself stays least squares) until one holds,
 /// which sets *reweight_held: up to there the reweighted search solves the same pairs.
 /// `smoothing`: the smoothness weight every pair starts at (attempt() lowers it from there).
-/// `lower_helps` (at the default weight): where no pair held, set to whether the pair that
-/// missed least holds, or misses by at most half as much, with the weight lowered.
+/// `lower_helps` (at the default weight): where no pair held, set to whether the largest pair
+/// of the diagonal holds, or misses by at most 3/4 as much, with the weight lowered.
 std::optional<GeometricFit> search_geometric_counted(
     const Frame& fr, const FitOptions& o, long bound, int corrections, long& tried,
     BasePlane plane = BasePlane::kBest, long linf_bound = LONG_MAX, bool reweighted = false,
