@@ -6,6 +6,7 @@
 #include "banded_lsq.h"
 #include "basis_knots.h"
 #include "deviation.h"
+#include "knot_tensor_lsq.h"
 #include "sfit/fold_check.h"
 
 namespace sfit::detail {
@@ -136,67 +137,13 @@ void row_residuals(const Rows& rows, const std::vector<double>& u, const Point& 
   }
 }
 
-// The tensor-product least squares on (ku, kv) into `s` (control points in original
-// coordinates); false where the solve failed.
+// The tensor-product least squares on (ku, kv) with the second-difference term
+// (knot_tensor_lsq.h) into `s` (control points in original coordinates); false where the
+// solve failed.
 bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
                   const Point& centre, const Breaks& ku, const Breaks& kv, Surface& s) {
-  const KnotVector KU = ku.knots(), KV = kv.knots();
-  const int p = ku.degree, q = kv.degree, nu = ku.count(), nv = kv.count();
-  // A closed u direction: control point (i, j) is unknown i nv + j, so u's wrap (i mod nu) is
-  // the cyclic band's (mod nu nv), which BandedLeastSquares holds in a dense tail.
-  const bool per = ku.periodic;
-  const int n = nu * nv, w = std::min(n, p * nv + q + 1);
-  BandedLeastSquares ls(n, w, per);
-  std::vector<double> Nu(static_cast<std::size_t>(p + 1)), Nv(static_cast<std::size_t>(q + 1));
-  std::vector<double> coef(static_cast<std::size_t>(p * nv + q + 1)), buf;
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    const int fv = eval_basis(KV, q, nv, false, v[j], Nv.data());
-    const auto row = rows[j];
-    const double* uj = u.data() + rows.offsets()[j];
-    for (std::size_t i = 0; i < row.size(); ++i) {
-      const int fu = eval_basis(KU, p, nu, per, uj[i], Nu.data());
-      std::fill(coef.begin(), coef.end(), 0.0);
-      for (int a = 0; a <= p; ++a)
-        for (int b = 0; b <= q; ++b) coef[static_cast<std::size_t>(a * nv + b)] = Nu[a] * Nv[b];
-      add_equation(ls, n, w, buf, fu * nv + fv, coef.data(), p * nv + q + 1, row[i] - centre, 1,
-                   per);
-    }
-  }
-  // Second differences along u (stride nv; around the wrap when closed) and along v (stride
-  // 1); first differences at degree 1.
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      std::fill(coef.begin(), coef.end(), 0.0);
-      const int du = p >= 2 ? 2 : 1, dv = q >= 2 ? 2 : 1;
-      if (per || i + du < nu) {
-        coef[0] = 1;
-        coef[static_cast<std::size_t>(nv)] = du == 2 ? -2 : -1;
-        if (du == 2) coef[static_cast<std::size_t>(2 * nv)] = 1;
-        add_equation(ls, n, w, buf, i * nv + j, coef.data(), du * nv + 1, Point::Zero(), kRidge,
-                     per);
-        std::fill(coef.begin(), coef.end(), 0.0);
-      }
-      if (j + dv < nv) {
-        coef[0] = 1;
-        coef[1] = dv == 2 ? -2 : -1;
-        if (dv == 2) coef[2] = 1;
-        add_equation(ls, n, w, buf, i * nv + j, coef.data(), dv + 1, Point::Zero(), kRidge, per);
-      }
-    }
-  std::vector<Point> x;
-  if (!ls.solve(x)) return false;
-  s.count_u = nu;
-  s.count_v = nv;
-  s.knots_u = KnotVector();
-  s.knots_v = KnotVector();
-  s.set_knots_u(KU);
-  s.set_knots_v(KV);
-  s.control.resize(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    if (!x[k].allFinite()) return false;
-    s.control[k] = x[k] + centre;
-  }
-  return true;
+  return knot_tensor_lsq(rows, u, v, centre, ku.knots(), ku.degree, ku.count(), kv.knots(),
+                         kv.degree, kv.count(), kRidge, s);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "closed_corners.h"
 #include "corner_rows.h"
 #include "deviation.h"
+#include "knot_tensor_lsq.h"
 #include "sfit/fold_check.h"
 #include "sfit/knot_vector.h"
 #include "sfit/parametrization.h"
@@ -121,85 +122,13 @@ DirectionKnots uniform_v(int degree, int count, double end) {
   return {KnotVector::from_breaks(degree, false, b), degree, count};
 }
 
-// The tensor-product least squares over every point on (du, dv), with the second-difference
-// term along u (stride nv) and v, into `s` (data coordinates). Control point (i, j) is unknown
-// i nv + j; the equations go into the banded Givens QR in the order of their first unknown,
-// so each one stops rotating at the first row of R still empty (rows taken in the data's
-// order fill R ahead of them and cost the band's width times the unknowns each). A periodic
-// u (closed rows): u's wrap (i mod nu) is the cyclic band's (mod nu nv), held by
-// BandedLeastSquares in a dense tail.
+// The tensor-product least squares over every point on (du, dv) with the second-difference
+// term (knot_tensor_lsq.h), into `s` (data coordinates).
 bool solve_tensor(const Rows& rows, const std::vector<double>& u, const std::vector<double>& v,
                   const Point& centre, const DirectionKnots& du, const DirectionKnots& dv,
                   Surface& s) {
-  const int p = du.degree, q = dv.degree, nu = du.count, nv = dv.count;
-  const int n = nu * nv, w = std::min(n, p * nv + q + 1);
-  const bool per = du.knots.periodic();
-  const int ru = p >= 2 ? 2 : 1, rv = q >= 2 ? 2 : 1;
-  // Equations as (first unknown, kind, index): kind 0 a point, 1 u smoothing, 2 v smoothing.
-  struct Eq {
-    int first, kind;
-    std::size_t index;
-  };
-  std::vector<Eq> eqs;
-  eqs.reserve(rows.total_points() + 2 * static_cast<std::size_t>(n));
-  std::vector<int> fu(rows.total_points()), fv(rows.size());
-  std::vector<double> Nu(static_cast<std::size_t>(p + 1)), Nv(static_cast<std::size_t>(q + 1));
-  for (std::size_t j = 0; j < rows.size(); ++j) {
-    fv[j] = eval_basis(dv.knots, q, nv, false, v[j], Nv.data());
-    for (std::size_t k = rows.offsets()[j]; k < rows.offsets()[j + 1]; ++k) {
-      fu[k] = eval_basis(du.knots, p, nu, per, u[k], Nu.data());
-      eqs.push_back({fu[k] * nv + fv[j], 0, k});
-    }
-  }
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const std::size_t at = static_cast<std::size_t>(i * nv + j);
-      if (per || i + ru < nu) eqs.push_back({i * nv + j, 1, at});
-      if (j + rv < nv) eqs.push_back({i * nv + j, 2, at});
-    }
-  std::stable_sort(eqs.begin(), eqs.end(),
-                   [](const Eq& a, const Eq& b) { return a.first < b.first; });
-  BandedLeastSquares ls(n, w, per);
-  std::vector<double> coef(static_cast<std::size_t>(w));
-  std::vector<std::size_t> row_of(rows.total_points());
-  for (std::size_t j = 0; j < rows.size(); ++j)
-    for (std::size_t k = rows.offsets()[j]; k < rows.offsets()[j + 1]; ++k) row_of[k] = j;
-  for (const Eq& e : eqs) {
-    const int start = per ? e.first % n : std::min(e.first, std::max(0, n - w));
-    const std::size_t o = per ? 0 : static_cast<std::size_t>(e.first - start);
-    std::fill(coef.begin(), coef.end(), 0.0);
-    if (e.kind == 0) {
-      const std::size_t j = row_of[e.index];
-      eval_basis(du.knots, p, nu, per, u[e.index], Nu.data());
-      eval_basis(dv.knots, q, nv, false, v[j], Nv.data());
-      for (int a = 0; a <= p; ++a)
-        for (int b = 0; b <= q; ++b) coef[o + static_cast<std::size_t>(a * nv + b)] = Nu[a] * Nv[b];
-      ls.add(start, coef.data(), rows.points()[e.index] - centre, 1);
-    } else {
-      const std::size_t step = e.kind == 1 ? static_cast<std::size_t>(nv) : 1;
-      const int r = e.kind == 1 ? ru : rv;
-      coef[o] = 1;
-      coef[o + step] = r == 2 ? -2 : -1;
-      if (r == 2) coef[o + 2 * step] = 1;
-      ls.add(start, coef.data(), Point::Zero(), kRidge);
-    }
-  }
-  std::vector<Point> x;
-  if (!ls.solve(x)) return false;
-  s = Surface();
-  s.degree_u = p;
-  s.degree_v = q;
-  s.count_u = nu;
-  s.count_v = nv;
-  s.periodic_u = per;
-  s.set_knots_u(du.knots);
-  s.set_knots_v(dv.knots);
-  s.control.resize(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    if (!x[static_cast<std::size_t>(k)].allFinite()) return false;
-    s.control[static_cast<std::size_t>(k)] = x[static_cast<std::size_t>(k)] + centre;
-  }
-  return true;
+  return knot_tensor_lsq(rows, u, v, centre, du.knots, du.degree, du.count, dv.knots, dv.degree,
+                         dv.count, kRidge, s);
 }
 
 }  // namespace
