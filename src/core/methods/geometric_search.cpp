@@ -192,8 +192,8 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   }
   // The searches again with the smoothness term's weight lowered from the first pair on
   // (kSmoothing x kSmoothingLower), below what they found: where what held needed the weight
-  // lowered (attempt()), or where nothing held and the pair missed least, with the weight
-  // lowered, held or missed by at most kLowerHelps as much (the probe in
+  // lowered (attempt()), or where nothing held and the diagonal's largest pair, with the
+  // weight lowered, held or missed by at most kLowerHelps as much (the probe in
   // search_geometric_counted()).
   // The default weight's pull on the spans that hold data does not shrink with T, and at a
   // small T it alone misses T at pairs far from the near miss attempt() lowers it at (scan
