@@ -14,15 +14,17 @@ namespace sfit::detail {
 /// Points predicted from their neighbours.
 struct NeighbourNoise {
   long points = 0;    // points predicted (a sample spread over the rows)
-  long beyond = 0;    // of them, those farther than T from their neighbours' quadric
-  double median = 0;  // the median of |miss| / T along the quadric's normal
+  long beyond = 0;    // of them, those farther than T from their neighbours' quadric (cubic)
+  double median = 0;  // the median of |miss| / T along the neighbours' normal
 };
 
 /// For up to 1024 points spread over the rows: the quadric h(s, t) fitted by least squares to
 /// its neighbours (up to 6 in its own row and 5 in each of the two rows either side, nearest in
 /// space, never the point itself), in the frame of their principal axes (h along the normal);
 /// the point's distance from it along the normal, over what T allows along that normal
-/// (sum over the axes of |n_a| T_a; an axis with T = 0 at `roundoff`). Points whose neighbours
+/// (sum over the axes of |n_a| T_a; an axis with T = 0 at `roundoff`). Where there are 16
+/// neighbours or more the cubic is fitted too and the lesser distance counts (a quadric's own
+/// error on smooth data sampled sparsely at a small T is no noise). Points whose neighbours
 /// lie nearly on a line, or are too few for a quadric, are left out.
 NeighbourNoise neighbour_noise(const Rows& centred, const FitOptions& o, double roundoff);
 
