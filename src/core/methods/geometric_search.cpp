@@ -142,6 +142,25 @@ PairRange range_for(const ScatteredProblem& sp, const Rows& rows) {
                    }};
 }
 
+long size_of(const GeometricFit& g) {
+  return static_cast<long>(g.surface.count_u) * g.surface.count_v;
+}
+
+// The search over the coordinate plane nearest the best plane (geometric_params.h), below the
+// count of `g` (the best plane's surface), kept in `g` where it has fewer control points.
+void try_axis_plane(const Frame& fr, const FitOptions& o, long bound, int corrections, long& tried,
+                    long linf_bound, long* near, double smoothing, std::optional<GeometricFit>& g) {
+  if (!g) return;
+  const long found = size_of(*g);
+  std::optional<GeometricFit> a =
+      search_geometric_counted(fr, o, std::min(bound, found), corrections, tried, BasePlane::kAxis,
+                               std::min(linf_bound, found), false, near, nullptr, smoothing);
+  if (a && size_of(*a) < found) {
+    a->stop += "; parameters from the coordinate plane nearest the best plane";
+    g = std::move(a);
+  }
+}
+
 }  // namespace
 
 std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& o, long bound,
@@ -160,16 +179,7 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   // where the best plane's found one. Where it found none below the bound the coordinate
   // plane's search was as long and found none either on every example set and generated
   // case (topobathy at 1e-3: 53 % more instructions for the whole fit, for nothing).
-  if (g) {
-    const long found = static_cast<long>(g->surface.count_u) * g->surface.count_v;
-    std::optional<GeometricFit> a =
-        search_geometric_counted(fr, o, std::min(bound, found), corrections, tried,
-                                 BasePlane::kAxis, std::min(linf_bound, found), false, &near);
-    if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < found) {
-      a->stop += "; parameters from the coordinate plane nearest the best plane";
-      g = std::move(a);
-    }
-  }
+  try_axis_plane(fr, o, bound, corrections, tried, linf_bound, &near, kSmoothing, g);
   // The search again with the reweighted fit at near misses (geometric_reweight.h), below
   // what the plain search found: a separate search, not the plain one's oracle, because a
   // smaller pair held early can end the correction by projection at a larger count than the
@@ -182,11 +192,11 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   // where none did the reweighted search would retrace the plain one and end at its count
   // (topobathy at 1e-3: no reweighted fit held at any of its 16 near misses, 169 ... 4920
   // control points, and the search cost 1.6x the fit's instructions for the same 114 x 60).
-  const long found = g ? static_cast<long>(g->surface.count_u) * g->surface.count_v : bound;
+  const long found = g ? size_of(*g) : bound;
   std::optional<GeometricFit> r;
   if (near < found && reweight_held && fr.centred.total_points() >= kReweightPoints)
     r = search_geometric_counted(fr, o, bound, corrections, tried, BasePlane::kBest, 0, true);
-  if (r && static_cast<long>(r->surface.count_u) * r->surface.count_v < found) {
+  if (r && size_of(*r) < found) {
     r->stop += "; least squares reweighted where it missed T by a little";
     g = std::move(r);
   }
@@ -205,17 +215,11 @@ std::optional<GeometricFit> search_geometric(const Frame& fr, const FitOptions& 
   // +55 % of the fit's CPU).
   if ((g && g->smoothing < kSmoothing) || (!g && lower_helps)) {
     const double low = kSmoothing * kSmoothingLower;
-    const long before = g ? static_cast<long>(g->surface.count_u) * g->surface.count_v : bound;
+    const long before = g ? size_of(*g) : bound;
     std::optional<GeometricFit> l = search_geometric_counted(
         fr, o, before, corrections, tried, BasePlane::kBest, 0, false, nullptr, nullptr, low);
+    try_axis_plane(fr, o, before, corrections, tried, 0, nullptr, low, l);
     if (l) {
-      const long best = static_cast<long>(l->surface.count_u) * l->surface.count_v;
-      std::optional<GeometricFit> a = search_geometric_counted(
-          fr, o, best, corrections, tried, BasePlane::kAxis, 0, false, nullptr, nullptr, low);
-      if (a && static_cast<long>(a->surface.count_u) * a->surface.count_v < best) {
-        a->stop += "; parameters from the coordinate plane nearest the best plane";
-        l = std::move(a);
-      }
       l->stop += "; the smoothness term's weight lowered from the first pair on";
       g = std::move(l);
     }
